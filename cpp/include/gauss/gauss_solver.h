@@ -1,0 +1,129 @@
+#pragma once
+// Gauss stylization (Kohlbrenner et al. 2021): ARAP extended by -mu * sum_f g(n_f), minimized by
+// Algorithm 1: an ADMM local step on auxiliary face normals n*_f and edges e*_ij, the ARAP rotation
+// fit, and a global step against a Laplacian that is factored once.
+//
+// Usage (geometry-central style: the constructor does the expensive set-up, methods are cheap):
+//   GaussSolver s(V, nV, F, nF);         // normalize, cotangent weights, topology, factorization
+//   s.set_styles({PreferenceFunction(preset_style("cube"))});
+//   for (...) s.step();                  // no allocation, no sparse look-up, no factorization
+//   s.copy_vertices(out);
+//
+// Frames: the solver works on a normalized copy (vertex centroid at the origin, longest bounding-box
+// side 1) so that lambda, sigma and mu mean what they mean in the paper; inputs and outputs are in
+// the caller's frame.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "gauss/cholesky_solver.h"
+#include "gauss/mesh_topology.h"
+#include "gauss/preference_function.h"
+
+namespace gauss {
+
+struct StepTimings {  // milliseconds spent in each phase of the last step
+  double faces = 0, rotations = 0, admm = 0, rhs = 0, solve = 0;
+};
+
+class GaussSolver {
+ public:
+  // V: #V by 3 row-major coordinates; F: #F by 3 row-major vertex indices.
+  // pinned: #P vertex indices; pin_positions: #P by 3 targets (nullptr: the rest positions).
+  // Throws std::invalid_argument on bad input (message says what is wrong).
+  GaussSolver(const double* V, int num_vertices, const int64_t* F, int num_faces,
+              const std::vector<int64_t>& pinned = {}, const double* pin_positions = nullptr,
+              double lambda = 4.0);
+
+  // --- Styles: take effect at the next step, never re-factor. ---
+  // Default: one cube style (sigma 4, mu 1) on every face.
+  void set_styles(std::vector<PreferenceFunction> styles);
+  void set_style(int index, PreferenceFunction style);
+  // Per input face: index into the style list, or -1 for an unstyled face (pure ARAP).
+  void set_face_styles(const int64_t* style_of_input_face, int count);
+  int num_styles() const { return static_cast<int>(styles_.size()); }
+
+  // --- Parameters that change the system matrix: re-factor. ---
+  void set_lambda(double lambda);
+  double lambda() const { return lambda_; }
+  void set_pins(const std::vector<int64_t>& pinned, const double* pin_positions = nullptr);
+  void set_admm_iterations(int n);
+  int admm_iterations() const { return admm_iterations_; }
+
+  // One iteration of Algorithm 1.
+  void step();
+  // Current vertices := rest vertices; step count := 0.
+  void reset();
+
+  // --- Read-outs. ---
+  void copy_vertices(double* out) const;  // #V by 3, caller's frame
+  void copy_vertices(float* out) const;
+  double arap_energy() const;  // E_ARAP of the current mesh with its optimal rotations (normalized frame)
+  double g_energy() const;     // E_g = sum over styled faces of g(n_f)
+  int step_count() const { return step_count_; }
+  int factorization_count() const { return factorization_count_; }
+  int num_vertices() const { return topo_.num_vertices; }
+  int num_input_faces() const { return num_input_faces_; }
+  const MeshTopology& topology() const { return topo_; }
+  const StepTimings& last_timings() const { return timings_; }
+  long long factor_nonzeros() const { return cholesky_.factor_nonzeros(); }
+
+ private:
+  void compute_rest_quantities();
+  void factor();
+  void face_pass();
+  void fit_rotations();  // rotation_ from face_cov_
+  void admm_round(bool first_round);
+  void assemble_rhs();
+  void solve_and_recenter();
+  Eigen::Vector3d to_caller(const Eigen::Vector3d& x) const { return x * scale_ + center_; }
+
+  MeshTopology topo_;
+  int num_input_faces_ = 0;
+  std::vector<Eigen::Vector3d> input_;  // caller's coordinates, returned verbatim for fixed vertices
+  Eigen::Vector3d center_;
+  double scale_ = 1.0;
+  std::vector<Eigen::Vector3d> rest_, X_;  // normalized frame
+
+  // Rest quantities.
+  std::vector<std::array<double, 3>> slot_weight_;    // #F by 3: cot(opposite angle) / 2
+  std::vector<std::array<Eigen::Vector3d, 3>> slot_rest_;  // #F by 3: weight * rest edge vector
+  std::vector<double> edge_weight_;                  // #E: sum of the slot weights of the edge
+
+  // Styles.
+  std::vector<PreferenceFunction> styles_;
+  std::vector<int> face_style_;  // #F (solver faces), -1 = unstyled
+
+  // Constraints and system.
+  double lambda_ = 4.0;
+  int admm_iterations_ = 1;
+  std::vector<int64_t> pinned_;
+  std::vector<Eigen::Vector3d> pin_targets_;         // caller's frame
+  std::vector<int> unknown_of_vertex_;               // -1 for fixed / unreferenced vertices
+  std::vector<int> vertex_of_unknown_;
+  std::vector<uint8_t> component_free_;              // 1: component has no pin, recenter after solve
+  std::vector<Eigen::Vector3d> component_rest_center_;
+  std::vector<int> component_size_;
+  std::vector<Eigen::Vector3d> fixed_rhs_;           // -L_fp x_p per unknown (constant)
+  CholeskySolver cholesky_;
+  int factorization_count_ = 0;
+
+  // Per-step buffers (allocated once).
+  std::vector<Eigen::Vector3d> normal_star_;                 // #F
+  std::vector<std::array<double, 3>> dual_;                  // #F by 3 (u_fij, w.r.t. lo->hi edges)
+  std::vector<uint8_t> face_active_;                         // #F: styled and non-degenerate
+  std::vector<Eigen::Vector3d> edge_star_;                   // #E (lo -> hi)
+  std::vector<Eigen::Matrix3d> face_cov_;                    // #F: sum_k w e_k ehat_k^T
+  std::vector<Eigen::Matrix3d> rotation_;                    // #V
+  std::vector<Eigen::Quaterniond> rotation_q_;               // #V: warm start of the rotation fit
+  std::vector<std::array<Eigen::Vector3d, 3>> corner_rhs_;   // #F by 3
+  std::vector<double> rhs_, work_;                           // #unknowns by 3
+  std::vector<Eigen::Vector3d> component_sum_;
+  StepTimings timings_;
+  int step_count_ = 0;
+};
+
+}  // namespace gauss

@@ -1,0 +1,55 @@
+#pragma once
+// Preference function g on the Gauss sphere (paper Sec. 3.1): a von Mises-Fisher mixture over
+// discrete preferred normals (Eq. 9) plus optional "circle" terms for cylinder/cone styles (Eq. 13).
+//
+// Numerics: every exponential is evaluated with its maximum folded into the weights,
+//   w_k exp(sigma (x.n_k))           == w'_k exp(sigma (x.n_k - 1)),   w'_k = w_k e^sigma
+//   w_r exp(sigma (1 - (x.a - d)^2)) == w'_r exp(-sigma (x.a - d)^2),  w'_r = w_r e^sigma
+// so no term exceeds its weight and g, grad g, Hess g stay finite for any sigma > 0.
+#include <Eigen/Core>
+#include <vector>
+
+namespace gauss {
+
+struct StyleParams {
+  // Preferred unit normals before rotation (#K by 3); may be empty if rings are given.
+  std::vector<Eigen::Vector3d> normals;
+  // Circle terms: normals x with x.axis == d for each d in ring_offsets (|d| < 1).
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  std::vector<double> ring_offsets;
+  // Weight of the discrete normals relative to the rings (only used when rings exist).
+  double axis_contribution = 0.5;
+  double sigma = 4.0;  // concentration of every term (> 0)
+  double mu = 1.0;     // weight of -mu * g in the energy (>= 0)
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // orientation on the Gauss sphere
+};
+
+// g with its weights solved so that g(n_k) = 1 at every discrete normal (Eq. 10) and g = 1 on every
+// ring (the ring weights solved among themselves, as for the double cone in the paper).
+class PreferenceFunction {
+ public:
+  // Throws std::invalid_argument with a readable message on nonsense parameters.
+  explicit PreferenceFunction(const StyleParams& params);
+
+  double value(const Eigen::Vector3d& x) const;
+  // Value, gradient (Eq. 11, 14) and Hessian (Eq. 12, 15) of g at x in one pass.
+  void evaluate(const Eigen::Vector3d& x, double& g, Eigen::Vector3d& grad,
+                Eigen::Matrix3d& hess) const;
+
+  double sigma() const { return sigma_; }
+  double mu() const { return mu_; }
+  const std::vector<Eigen::Vector3d>& normals() const { return normals_; }  // rotated
+  const Eigen::Vector3d& axis() const { return axis_; }                      // rotated
+  const std::vector<double>& ring_offsets() const { return offsets_; }
+  bool has_rings() const { return !offsets_.empty(); }
+
+ private:
+  std::vector<Eigen::Vector3d> normals_;
+  std::vector<double> normal_weights_;  // w'_k, axis contribution already folded in
+  Eigen::Vector3d axis_;
+  std::vector<double> offsets_;
+  std::vector<double> ring_weights_;    // w'_r
+  double sigma_, mu_;
+};
+
+}  // namespace gauss

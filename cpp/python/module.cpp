@@ -1,0 +1,374 @@
+// pybind11 bindings: numpy in, numpy out. Every check that can fail on user data happens here or in
+// the library and raises ValueError/TypeError; nothing reaches native code unchecked.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "gauss/gauss_solver.h"
+#include "gauss/presets.h"
+
+namespace py = pybind11;
+using gauss::GaussSolver;
+using gauss::PreferenceFunction;
+using gauss::StyleParams;
+
+namespace {
+
+// Reads an (n, cols) array of any real dtype and any strides into a flat row-major vector.
+template <typename Out>
+std::vector<Out> read_matrix(const py::handle& obj, py::ssize_t cols, const char* name, bool integer) {
+  py::array arr = py::array::ensure(obj);
+  if (!arr) throw py::type_error(std::string(name) + " must be array-like");
+  const char kind = arr.dtype().kind();
+  const bool ok_kind = integer ? (kind == 'i' || kind == 'u') : (kind == 'f' || kind == 'i' || kind == 'u');
+  if (!ok_kind) {
+    std::ostringstream msg;
+    msg << name << " must have a" << (integer ? "n integer" : " floating-point") << " dtype, got " << py::str(arr.dtype()).cast<std::string>();
+    throw py::type_error(msg.str());
+  }
+  if (arr.ndim() == 1 && cols == 1) {
+  } else if (arr.ndim() != 2 || arr.shape(1) != cols) {
+    std::ostringstream msg;
+    msg << name << " must have shape (n, " << cols << "), got (";
+    for (py::ssize_t i = 0; i < arr.ndim(); ++i) msg << (i ? ", " : "") << arr.shape(i);
+    msg << (arr.ndim() == 1 ? ",)" : ")");
+    throw py::value_error(msg.str());
+  }
+  // Convert through numpy only when the dtype differs; float32/int32 from Blender take this path
+  // inside native code, the caller never copies.
+  py::array_t<Out, py::array::forcecast> typed(arr);
+  std::vector<Out> out(static_cast<size_t>(typed.size()));
+  if (cols == 1 && typed.ndim() == 1) {
+    auto r = typed.template unchecked<1>();
+    for (py::ssize_t i = 0; i < r.shape(0); ++i) out[i] = r(i);
+  } else {
+    auto r = typed.template unchecked<2>();
+    for (py::ssize_t i = 0; i < r.shape(0); ++i)
+      for (py::ssize_t j = 0; j < cols; ++j) out[i * cols + j] = r(i, j);
+  }
+  return out;
+}
+
+Eigen::Matrix3d read_rotation(const py::object& obj) {
+  if (obj.is_none()) return Eigen::Matrix3d::Identity();
+  std::vector<double> m = read_matrix<double>(obj, 3, "rotation", false);
+  if (m.size() != 9) throw py::value_error("rotation must be a 3x3 matrix");
+  Eigen::Matrix3d R;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) R(i, j) = m[3 * i + j];
+  return R;
+}
+
+Eigen::Vector3d read_vector3(const py::object& obj, const char* name) {
+  std::vector<double> v = read_matrix<double>(py::array::ensure(obj).reshape({1, -1}), 3, name, false);
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
+// A style as Python sees it: its parameters (for read-back) plus the evaluated function.
+struct Style {
+  std::string name;
+  StyleParams params;
+  std::shared_ptr<PreferenceFunction> g;
+};
+
+Style make_style(std::string name, StyleParams params) {
+  Style s{std::move(name), params, nullptr};
+  s.g = std::make_shared<PreferenceFunction>(params);
+  return s;
+}
+
+py::array_t<double> to_array(const std::vector<Eigen::Vector3d>& v) {
+  py::array_t<double> out({static_cast<py::ssize_t>(v.size()), py::ssize_t(3)});
+  auto w = out.mutable_unchecked<2>();
+  for (size_t i = 0; i < v.size(); ++i)
+    for (int k = 0; k < 3; ++k) w(i, k) = v[i][k];
+  return out;
+}
+
+// Evaluates f at one point (shape (3,)) or many (shape (n, 3)).
+template <typename F>
+py::object eval_points(const py::object& x, F&& f) {
+  py::array arr = py::array::ensure(x);
+  if (!arr) throw py::type_error("x must be array-like");
+  const bool single = arr.ndim() == 1;
+  std::vector<double> pts = read_matrix<double>(single ? arr.reshape({1, -1}) : arr, 3, "x", false);
+  return f(pts, single);
+}
+
+class Solver {
+ public:
+  Solver(const py::object& V, const py::object& F, const py::object& pinned, const py::object& pin_positions,
+         double lam, int admm_iterations) {
+    std::vector<double> v = read_matrix<double>(V, 3, "V", false);
+    std::vector<int64_t> f = read_matrix<int64_t>(F, 3, "F", true);
+    std::vector<int64_t> pins;
+    std::vector<double> targets;
+    read_pins(pinned, pin_positions, pins, targets);
+    solver_ = std::make_unique<GaussSolver>(v.data(), static_cast<int>(v.size() / 3), f.data(),
+                                            static_cast<int>(f.size() / 3), pins,
+                                            targets.empty() ? nullptr : targets.data(), lam);
+    solver_->set_admm_iterations(admm_iterations);
+    styles_.push_back(make_style("cube", gauss::preset_style("cube")));
+  }
+
+  void set_styles(const std::vector<Style>& styles) {
+    std::vector<PreferenceFunction> gs;
+    for (const Style& s : styles) gs.push_back(*s.g);
+    std::lock_guard<std::mutex> lock(mutex_);
+    solver_->set_styles(std::move(gs));
+    styles_ = styles;
+  }
+  void set_style(int i, const Style& s) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    solver_->set_style(i, *s.g);
+    styles_[i] = s;
+  }
+  void set_face_styles(const py::object& idx) {
+    std::vector<int64_t> s = read_matrix<int64_t>(idx, 1, "face_styles", true);
+    std::lock_guard<std::mutex> lock(mutex_);
+    solver_->set_face_styles(s.data(), static_cast<int>(s.size()));
+  }
+  void set_pins(const py::object& pinned, const py::object& positions) {
+    std::vector<int64_t> pins;
+    std::vector<double> targets;
+    read_pins(pinned, positions, pins, targets);
+    std::lock_guard<std::mutex> lock(mutex_);
+    solver_->set_pins(pins, targets.empty() ? nullptr : targets.data());
+  }
+  void step(int n) {
+    if (n < 0) throw py::value_error("the number of steps must be >= 0");
+    py::gil_scoped_release release;
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (int i = 0; i < n; ++i) solver_->step();
+  }
+  py::array_t<double> vertices() {
+    py::array_t<double> out({static_cast<py::ssize_t>(solver_->num_vertices()), py::ssize_t(3)});
+    std::lock_guard<std::mutex> lock(mutex_);
+    solver_->copy_vertices(out.mutable_data());
+    return out;
+  }
+  void vertices_into(py::array out) {
+    const py::ssize_t n = solver_->num_vertices();
+    const bool shape_ok = (out.ndim() == 2 && out.shape(0) == n && out.shape(1) == 3) ||
+                          (out.ndim() == 1 && out.shape(0) == 3 * n);
+    if (!shape_ok) {
+      std::ostringstream msg;
+      msg << "out must have shape (" << n << ", 3) or (" << 3 * n << ",)";
+      throw py::value_error(msg.str());
+    }
+    if (!(out.flags() & py::array::c_style) || !out.writeable())
+      throw py::value_error("out must be a writeable C-contiguous array");
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (py::isinstance<py::array_t<float>>(out) && out.dtype().is(py::dtype::of<float>()))
+      solver_->copy_vertices(static_cast<float*>(out.mutable_data()));
+    else if (out.dtype().is(py::dtype::of<double>()))
+      solver_->copy_vertices(static_cast<double*>(out.mutable_data()));
+    else
+      throw py::type_error("out must have dtype float32 or float64");
+  }
+
+  GaussSolver& core() { return *solver_; }
+  std::mutex& mutex() { return mutex_; }
+  const std::vector<Style>& styles() const { return styles_; }
+
+ private:
+  void read_pins(const py::object& pinned, const py::object& positions, std::vector<int64_t>& pins,
+                 std::vector<double>& targets) {
+    if (!pinned.is_none()) pins = read_matrix<int64_t>(pinned, 1, "pinned", true);
+    if (!positions.is_none()) {
+      targets = read_matrix<double>(positions, 3, "pin_positions", false);
+      if (targets.size() != 3 * pins.size()) {
+        std::ostringstream msg;
+        msg << "pin_positions must have one row per pinned vertex (" << pins.size() << "), got "
+            << targets.size() / 3;
+        throw py::value_error(msg.str());
+      }
+    }
+  }
+
+  std::unique_ptr<GaussSolver> solver_;
+  std::vector<Style> styles_;
+  std::mutex mutex_;
+};
+
+}  // namespace
+
+PYBIND11_MODULE(gauss_core, m) {
+  m.doc() = "Gauss stylization (Kohlbrenner et al. 2021): ARAP with preferred face normals.";
+
+  py::list presets;
+  for (const std::string& n : gauss::preset_names()) presets.append(n);
+  m.attr("PRESETS") = py::tuple(presets);
+
+  m.def("set_num_threads", [](int n) {
+        if (n < 1) throw py::value_error("the number of threads must be >= 1");
+#ifdef _OPENMP
+        omp_set_num_threads(n);
+#endif
+      }, py::arg("n"), "Sets how many OpenMP threads steps use (results do not depend on it).");
+  m.def("get_num_threads", []() {
+#ifdef _OPENMP
+        return omp_get_max_threads();
+#else
+        return 1;
+#endif
+      }, "Number of OpenMP threads steps use.");
+
+  py::class_<Style>(m, "Style", R"doc(
+A preference function g on the Gauss sphere with its own sigma (concentration) and mu (strength).
+
+Style(normals=None, *, sigma=4.0, mu=1.0, rotation=None, axis=None, ring_offsets=(), axis_contribution=0.5)
+  normals: (K, 3) preferred normals (normalized here); may be None if ring_offsets are given.
+  axis, ring_offsets: circles x . axis = d on the Gauss sphere (cylinder d = 0, cone d != 0).
+  axis_contribution: weight of the discrete normals relative to the rings (only with rings).
+  rotation: 3x3 rotation matrix applied to the normals and the axis (the style's orientation).
+Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper).)doc")
+      .def(py::init([](const py::object& normals, double sigma, double mu, const py::object& rotation,
+                       const py::object& axis, const py::object& ring_offsets, double axis_contribution) {
+             StyleParams p;
+             if (!normals.is_none() && py::array::ensure(normals).size() > 0) {
+               std::vector<double> n = read_matrix<double>(normals, 3, "normals", false);
+               for (size_t i = 0; i + 2 < n.size(); i += 3) p.normals.emplace_back(n[i], n[i + 1], n[i + 2]);
+             }
+             if (!ring_offsets.is_none()) p.ring_offsets = read_matrix<double>(ring_offsets, 1, "ring_offsets", false);
+             if (!axis.is_none()) p.axis = read_vector3(axis, "axis");
+             p.sigma = sigma;
+             p.mu = mu;
+             p.rotation = read_rotation(rotation);
+             p.axis_contribution = axis_contribution;
+             return make_style("custom", p);
+           }),
+           py::arg("normals") = py::none(), py::kw_only(), py::arg("sigma") = 4.0, py::arg("mu") = 1.0,
+           py::arg("rotation") = py::none(), py::arg("axis") = py::none(), py::arg("ring_offsets") = py::none(),
+           py::arg("axis_contribution") = 0.5)
+      .def_static("preset", [](const std::string& name, double sigma, double mu, const py::object& rotation,
+                               double axis_contribution) {
+             StyleParams p = gauss::preset_style(name);
+             p.sigma = sigma;
+             p.mu = mu;
+             p.rotation = read_rotation(rotation);
+             p.axis_contribution = axis_contribution;
+             return make_style(name, p);
+           },
+           py::arg("name"), py::arg("sigma") = 4.0, py::arg("mu") = 1.0, py::arg("rotation") = py::none(),
+           py::arg("axis_contribution") = 0.5,
+           "A named style (see PRESETS) with the given sigma, mu, orientation and axis contribution.")
+      .def_property_readonly("name", [](const Style& s) { return s.name; }, "Preset name or 'custom'.")
+      .def_property_readonly("normals", [](const Style& s) { return to_array(s.g->normals()); },
+                             "(K, 3) preferred normals after rotation.")
+      .def_property_readonly("axis", [](const Style& s) { return to_array({s.g->axis()}).reshape({3}); },
+                             "Ring axis after rotation.")
+      .def_property_readonly("ring_offsets", [](const Style& s) { return s.g->ring_offsets(); })
+      .def_property_readonly("sigma", [](const Style& s) { return s.g->sigma(); })
+      .def_property_readonly("mu", [](const Style& s) { return s.g->mu(); })
+      .def_property_readonly("axis_contribution", [](const Style& s) { return s.params.axis_contribution; })
+      .def_property_readonly("rotation", [](const Style& s) {
+             py::array_t<double> R({3, 3});
+             auto w = R.mutable_unchecked<2>();
+             for (int i = 0; i < 3; ++i)
+               for (int j = 0; j < 3; ++j) w(i, j) = s.params.rotation(i, j);
+             return R;
+           })
+      .def("value", [](const Style& s, const py::object& x) {
+             return eval_points(x, [&](const std::vector<double>& p, bool single) -> py::object {
+               py::array_t<double> out(static_cast<py::ssize_t>(p.size() / 3));
+               for (size_t i = 0; i < p.size() / 3; ++i)
+                 out.mutable_at(i) = s.g->value(Eigen::Vector3d(p[3 * i], p[3 * i + 1], p[3 * i + 2]));
+               return single ? py::object(py::float_(out.at(0))) : py::object(out);
+             });
+           }, py::arg("x"), "g(x) for x of shape (3,) or (n, 3).")
+      .def("gradient", [](const Style& s, const py::object& x) {
+             return eval_points(x, [&](const std::vector<double>& p, bool single) -> py::object {
+               const py::ssize_t n = static_cast<py::ssize_t>(p.size() / 3);
+               py::array_t<double> out({n, py::ssize_t(3)});
+               auto w = out.mutable_unchecked<2>();
+               for (py::ssize_t i = 0; i < n; ++i) {
+                 double g; Eigen::Vector3d gr; Eigen::Matrix3d H;
+                 s.g->evaluate(Eigen::Vector3d(p[3 * i], p[3 * i + 1], p[3 * i + 2]), g, gr, H);
+                 for (int k = 0; k < 3; ++k) w(i, k) = gr[k];
+               }
+               return single ? py::object(out.reshape({3})) : py::object(out);
+             });
+           }, py::arg("x"), "Unconstrained gradient of g (Eqs. 11, 14), shape (3,) or (n, 3).")
+      .def("hessian", [](const Style& s, const py::object& x) {
+             return eval_points(x, [&](const std::vector<double>& p, bool single) -> py::object {
+               const py::ssize_t n = static_cast<py::ssize_t>(p.size() / 3);
+               py::array_t<double> out({n, py::ssize_t(3), py::ssize_t(3)});
+               auto w = out.mutable_unchecked<3>();
+               for (py::ssize_t i = 0; i < n; ++i) {
+                 double g; Eigen::Vector3d gr; Eigen::Matrix3d H;
+                 s.g->evaluate(Eigen::Vector3d(p[3 * i], p[3 * i + 1], p[3 * i + 2]), g, gr, H);
+                 for (int a = 0; a < 3; ++a)
+                   for (int b = 0; b < 3; ++b) w(i, a, b) = H(a, b);
+               }
+               return single ? py::object(out.reshape({3, 3})) : py::object(out);
+             });
+           }, py::arg("x"), "Unconstrained Hessian of g (Eqs. 12, 15), shape (3, 3) or (n, 3, 3).")
+      .def("__repr__", [](const Style& s) {
+        std::ostringstream o;
+        o << "<gauss_core.Style '" << s.name << "' sigma=" << s.g->sigma() << " mu=" << s.g->mu()
+          << " normals=" << s.g->normals().size() << " rings=" << s.g->ring_offsets().size() << ">";
+        return o.str();
+      });
+
+  py::class_<Solver>(m, "Solver", R"doc(
+Gauss stylization of one triangle mesh. The constructor does the set-up (normalization, cotangent
+weights, topology, sparse Cholesky factorization); step() runs Algorithm 1 of the paper.
+
+Solver(V, F, pinned=None, pin_positions=None, lam=4.0, admm_iterations=1)
+  V: (#V, 3) float32/float64 coordinates.  F: (#F, 3) int32/int64 triangle indices.
+  pinned: (#P,) vertex indices that keep their position; pin_positions: (#P, 3) targets
+  (default: their rest positions).  lam: lambda >= 0.  admm_iterations: ADMM rounds per step.
+By default one cube style (sigma 4, mu 1) applies to every face.)doc")
+      .def(py::init<const py::object&, const py::object&, const py::object&, const py::object&, double, int>(),
+           py::arg("V"), py::arg("F"), py::arg("pinned") = py::none(), py::arg("pin_positions") = py::none(),
+           py::arg("lam") = 4.0, py::arg("admm_iterations") = 1)
+      .def("set_styles", &Solver::set_styles, py::arg("styles"),
+           "Replaces the style list (takes effect at the next step, no re-factorization).")
+      .def("set_style", &Solver::set_style, py::arg("index"), py::arg("style"), "Replaces one style.")
+      .def_property_readonly("styles", &Solver::styles, "The current style list.")
+      .def("set_face_styles", &Solver::set_face_styles, py::arg("face_styles"),
+           "(#F,) ints: style index per face, -1 = unstyled (pure ARAP). No re-factorization.")
+      .def("set_pins", &Solver::set_pins, py::arg("pinned"), py::arg("positions") = py::none(),
+           "Sets the pinned vertices and their targets (re-factors).")
+      .def_property("lam", [](Solver& s) { return s.core().lambda(); },
+                    [](Solver& s, double l) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_lambda(l); },
+                    "lambda (>= 0): how strongly edges follow the preferred normals.")
+      .def_property("admm_iterations", [](Solver& s) { return s.core().admm_iterations(); },
+                    [](Solver& s, int n) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_admm_iterations(n); },
+                    "ADMM rounds per step (1 to 1000).")
+      .def("step", &Solver::step, py::arg("n") = 1, "Runs n iterations (releases the GIL).")
+      .def("reset", [](Solver& s) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().reset(); },
+           "Current vertices := rest vertices; step_count := 0.")
+      .def_property_readonly("vertices", &Solver::vertices, "(#V, 3) float64 copy of the current vertices.")
+      .def("vertices_into", &Solver::vertices_into, py::arg("out"),
+           "Writes the current vertices into a C-contiguous float32/float64 array of shape (#V, 3) or (3*#V,).")
+      .def_property_readonly("arap_energy", [](Solver& s) {
+             std::lock_guard<std::mutex> lock(s.mutex());
+             return s.core().arap_energy();
+           }, "E_ARAP of the current mesh (normalized frame).")
+      .def_property_readonly("g_energy", [](Solver& s) {
+             std::lock_guard<std::mutex> lock(s.mutex());
+             return s.core().g_energy();
+           }, "E_g = sum over styled faces of g(n_f).")
+      .def_property_readonly("step_count", [](Solver& s) { return s.core().step_count(); })
+      .def_property_readonly("factorization_count", [](Solver& s) { return s.core().factorization_count(); })
+      .def_property_readonly("num_vertices", [](Solver& s) { return s.core().num_vertices(); })
+      .def_property_readonly("num_faces", [](Solver& s) { return s.core().num_input_faces(); })
+      .def_property_readonly("last_step_ms", [](Solver& s) {
+             const gauss::StepTimings& t = s.core().last_timings();
+             py::dict d;
+             d["faces"] = t.faces; d["rotations"] = t.rotations; d["admm"] = t.admm; d["rhs"] = t.rhs; d["solve"] = t.solve;
+             return d;
+           }, "Milliseconds per phase of the last step.");
+}

@@ -1,0 +1,511 @@
+#include "gauss/gauss_solver.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "gauss/closest_rotation.h"
+#include "gauss/presets.h"
+
+namespace gauss {
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+using Clock = std::chrono::steady_clock;
+
+// A face whose doubled area is below this fraction of its summed squared edge lengths has no
+// reliable cotangents (|cot| would exceed ~1e8) or normal.
+constexpr double kDegenerateRatio = 1e-8;
+// Cotangent weight given to each edge of a face that is degenerate in the rest pose: small and
+// positive, so the face still ties its vertices to the mesh and the Laplacian stays definite.
+constexpr double kDegenerateWeight = 1e-3;
+
+double ms_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+// Solves the symmetric 3x3 system H x = b by cofactors; false if H is (numerically) singular.
+bool solve_symmetric3(const Matrix3d& H, const Vector3d& b, Vector3d& x) {
+  const double c00 = H(1, 1) * H(2, 2) - H(1, 2) * H(2, 1);
+  const double c01 = H(1, 2) * H(2, 0) - H(1, 0) * H(2, 2);
+  const double c02 = H(1, 0) * H(2, 1) - H(1, 1) * H(2, 0);
+  const double det = H(0, 0) * c00 + H(0, 1) * c01 + H(0, 2) * c02;
+  const double scale = H.cwiseAbs().maxCoeff();
+  if (!(std::abs(det) > 1e-12 * scale * scale * scale) || !std::isfinite(det)) return false;
+  Matrix3d adj;
+  adj << c00, H(0, 2) * H(2, 1) - H(0, 1) * H(2, 2), H(0, 1) * H(1, 2) - H(0, 2) * H(1, 1),
+      c01, H(0, 0) * H(2, 2) - H(0, 2) * H(2, 0), H(0, 2) * H(1, 0) - H(0, 0) * H(1, 2),
+      c02, H(0, 1) * H(2, 0) - H(0, 0) * H(2, 1), H(0, 0) * H(1, 1) - H(0, 1) * H(1, 0);
+  x = adj * b / det;
+  return x.allFinite();
+}
+
+}  // namespace
+
+GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, int num_faces,
+                         const std::vector<int64_t>& pinned, const double* pin_positions,
+                         double lambda) {
+  if (num_vertices <= 0) throw std::invalid_argument("the mesh has no vertices");
+  if (num_faces <= 0) throw std::invalid_argument("the mesh has no faces");
+  if (!std::isfinite(lambda) || lambda < 0) throw std::invalid_argument("lambda must be a finite number >= 0");
+  for (int i = 0; i < 3 * num_vertices; ++i)
+    if (!std::isfinite(V[i])) {
+      std::ostringstream msg;
+      msg << "vertex " << i / 3 << " has a NaN or infinite coordinate";
+      throw std::invalid_argument(msg.str());
+    }
+  topo_ = build_mesh_topology(num_vertices, F, num_faces);
+  num_input_faces_ = num_faces;
+  lambda_ = lambda;
+
+  input_.resize(num_vertices);
+  for (int v = 0; v < num_vertices; ++v) input_[v] = Vector3d(V[3 * v], V[3 * v + 1], V[3 * v + 2]);
+  Vector3d lo = Vector3d::Constant(INFINITY), hi = Vector3d::Constant(-INFINITY), sum = Vector3d::Zero();
+  int referenced = 0;
+  for (int v = 0; v < num_vertices; ++v)
+    if (topo_.component[v] >= 0) {
+      lo = lo.cwiseMin(input_[v]);
+      hi = hi.cwiseMax(input_[v]);
+      sum += input_[v];
+      ++referenced;
+    }
+  scale_ = (hi - lo).maxCoeff();
+  if (!std::isfinite(scale_) || !(scale_ > 1e-300) || !sum.allFinite())
+    throw std::invalid_argument(
+        "the mesh's extent is zero or too large to represent (all vertices at one point, or coordinates near the floating-point limit)");
+  center_ = sum / referenced;
+  rest_.resize(num_vertices);
+  for (int v = 0; v < num_vertices; ++v) rest_[v] = (input_[v] - center_) / scale_;
+  X_ = rest_;
+
+  compute_rest_quantities();
+  const int nF = static_cast<int>(topo_.faces.size());
+  normal_star_.assign(nF, Vector3d::UnitZ());
+  dual_.assign(nF, {0, 0, 0});
+  face_active_.assign(nF, 0);
+  edge_star_.assign(topo_.edges.size(), Vector3d::Zero());
+  face_cov_.assign(nF, Matrix3d::Zero());
+  rotation_.assign(num_vertices, Matrix3d::Identity());
+  rotation_q_.assign(num_vertices, Eigen::Quaterniond::Identity());
+  corner_rhs_.resize(nF);
+  component_sum_.resize(topo_.num_components);
+
+  styles_.emplace_back(preset_style("cube"));
+  face_style_.assign(nF, 0);
+  set_pins(pinned, pin_positions);
+}
+
+void GaussSolver::compute_rest_quantities() {
+  const int nF = static_cast<int>(topo_.faces.size());
+  slot_weight_.resize(nF);
+  slot_rest_.resize(nF);
+  edge_weight_.assign(topo_.edges.size(), 0.0);
+  for (int f = 0; f < nF; ++f) {
+    const auto& t = topo_.faces[f];
+    Vector3d e[3];
+    for (int k = 0; k < 3; ++k) e[k] = rest_[t[(k + 1) % 3]] - rest_[t[k]];
+    const double twice_area = e[0].cross(e[1]).norm();
+    const double size = e[0].squaredNorm() + e[1].squaredNorm() + e[2].squaredNorm();
+    const bool degenerate = !(twice_area > kDegenerateRatio * size);
+    for (int k = 0; k < 3; ++k) {
+      // Slot k's opposite corner is t[(k+2)%3]; its angle lies between -e[(k+2)%3] and e[(k+1)%3].
+      const double cot = -e[(k + 2) % 3].dot(e[(k + 1) % 3]) / twice_area;
+      const double w = degenerate ? kDegenerateWeight : 0.5 * cot;
+      slot_weight_[f][k] = w;
+      slot_rest_[f][k] = w * e[k];
+      edge_weight_[topo_.face_edge[f][k]] += w;
+    }
+  }
+}
+
+void GaussSolver::set_styles(std::vector<PreferenceFunction> styles) {
+  for (int s : face_style_)
+    if (s >= static_cast<int>(styles.size())) {
+      std::ostringstream msg;
+      msg << "faces use style " << s << " but only " << styles.size()
+          << " styles were given; assign face styles that fit the new list first";
+      throw std::invalid_argument(msg.str());
+    }
+  styles_ = std::move(styles);
+}
+
+void GaussSolver::set_style(int index, PreferenceFunction style) {
+  if (index < 0 || index >= num_styles()) {
+    std::ostringstream msg;
+    msg << "style index " << index << " is out of range (there are " << num_styles() << " styles)";
+    throw std::invalid_argument(msg.str());
+  }
+  styles_[index] = std::move(style);
+}
+
+void GaussSolver::set_face_styles(const int64_t* style_of_input_face, int count) {
+  if (count != num_input_faces_) {
+    std::ostringstream msg;
+    msg << "face styles must have one entry per face (" << num_input_faces_ << "), got " << count;
+    throw std::invalid_argument(msg.str());
+  }
+  for (int i = 0; i < count; ++i)
+    if (style_of_input_face[i] < -1 || style_of_input_face[i] >= num_styles()) {
+      std::ostringstream msg;
+      msg << "face " << i << " has style " << style_of_input_face[i] << "; valid: -1 (unstyled) to "
+          << num_styles() - 1;
+      throw std::invalid_argument(msg.str());
+    }
+  for (size_t f = 0; f < topo_.faces.size(); ++f)
+    face_style_[f] = static_cast<int>(style_of_input_face[topo_.input_face[f]]);
+}
+
+void GaussSolver::set_lambda(double lambda) {
+  if (!std::isfinite(lambda) || lambda < 0) throw std::invalid_argument("lambda must be a finite number >= 0");
+  // Eq. 27: lambda only scales the right-hand side, so the factor stays valid.
+  lambda_ = lambda;
+}
+
+void GaussSolver::set_admm_iterations(int n) {
+  if (n < 1 || n > 1000) throw std::invalid_argument("ADMM iterations must be between 1 and 1000");
+  admm_iterations_ = n;
+}
+
+void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin_positions) {
+  const int nV = topo_.num_vertices;
+  std::vector<Vector3d> targets(pinned.size());
+  std::vector<uint8_t> seen(nV, 0);
+  for (size_t i = 0; i < pinned.size(); ++i) {
+    const int64_t v = pinned[i];
+    if (v < 0 || v >= nV) {
+      std::ostringstream msg;
+      msg << "pinned vertex index " << v << " is out of range (the mesh has " << nV << " vertices)";
+      throw std::invalid_argument(msg.str());
+    }
+    if (seen[v]++) {
+      std::ostringstream msg;
+      msg << "vertex " << v << " is pinned more than once";
+      throw std::invalid_argument(msg.str());
+    }
+    targets[i] = pin_positions ? Vector3d(pin_positions[3 * i], pin_positions[3 * i + 1], pin_positions[3 * i + 2])
+                               : input_[v];
+    if (!targets[i].allFinite()) {
+      std::ostringstream msg;
+      msg << "the target of pinned vertex " << v << " is NaN or infinite";
+      throw std::invalid_argument(msg.str());
+    }
+  }
+  pinned_ = pinned;
+  pin_targets_ = std::move(targets);
+  for (size_t i = 0; i < pinned_.size(); ++i) X_[pinned_[i]] = (pin_targets_[i] - center_) / scale_;
+  factor();
+}
+
+void GaussSolver::factor() {
+  const int nV = topo_.num_vertices;
+  const int nC = topo_.num_components;
+  // Fixed vertices: pins, plus one anchor per component without a pin (the ARAP system only
+  // determines such a component up to a translation; the anchor removes that null space and the
+  // component is re-centred on its rest centroid after every solve).
+  std::vector<uint8_t> fixed(nV, 0);
+  component_free_.assign(nC, 1);
+  for (int64_t v : pinned_) {
+    fixed[v] = 1;
+    if (topo_.component[v] >= 0) component_free_[topo_.component[v]] = 0;
+  }
+  std::vector<uint8_t> anchored(nC, 0);
+  component_rest_center_.assign(nC, Vector3d::Zero());
+  component_size_.assign(nC, 0);
+  for (int v = 0; v < nV; ++v) {
+    const int c = topo_.component[v];
+    if (c < 0) continue;
+    component_rest_center_[c] += rest_[v];
+    ++component_size_[c];
+    if (component_free_[c] && !anchored[c]) anchored[c] = fixed[v] = 1;
+  }
+  for (int c = 0; c < nC; ++c) component_rest_center_[c] /= component_size_[c];
+
+  unknown_of_vertex_.assign(nV, -1);
+  vertex_of_unknown_.clear();
+  for (int v = 0; v < nV; ++v)
+    if (topo_.component[v] >= 0 && !fixed[v]) {
+      unknown_of_vertex_[v] = static_cast<int>(vertex_of_unknown_.size());
+      vertex_of_unknown_.push_back(v);
+    }
+  const int n = static_cast<int>(vertex_of_unknown_.size());
+  // Fixed vertices sit at their pin target or (anchors) at the rest position.
+  std::vector<Vector3d> fixed_pos(nV);
+  for (int v = 0; v < nV; ++v) fixed_pos[v] = rest_[v];
+  for (size_t i = 0; i < pinned_.size(); ++i) fixed_pos[pinned_[i]] = (pin_targets_[i] - center_) / scale_;
+
+  std::vector<Eigen::Triplet<double>> triplets;
+  fixed_rhs_.assign(n, Vector3d::Zero());
+  for (size_t f = 0; f < topo_.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = topo_.faces[f][k], b = topo_.faces[f][(k + 1) % 3];
+      const double w = slot_weight_[f][k];
+      const int ua = unknown_of_vertex_[a], ub = unknown_of_vertex_[b];
+      if (ua >= 0) triplets.emplace_back(ua, ua, w);
+      if (ub >= 0) triplets.emplace_back(ub, ub, w);
+      if (ua >= 0 && ub >= 0) {
+        triplets.emplace_back(std::max(ua, ub), std::min(ua, ub), -w);
+      } else if (ua >= 0) {
+        fixed_rhs_[ua] += w * fixed_pos[b];
+      } else if (ub >= 0) {
+        fixed_rhs_[ub] += w * fixed_pos[a];
+      }
+    }
+  if (n > 0) {
+    Eigen::SparseMatrix<double> A(n, n);
+    A.setFromTriplets(triplets.begin(), triplets.end());
+    cholesky_.factor(A);
+  }
+  ++factorization_count_;
+  rhs_.assign(3 * static_cast<size_t>(n), 0.0);
+  work_.assign(3 * static_cast<size_t>(n), 0.0);
+}
+
+void GaussSolver::face_pass() {
+  const int nF = static_cast<int>(topo_.faces.size());
+#pragma omp parallel for schedule(static)
+  for (int f = 0; f < nF; ++f) {
+    const auto& t = topo_.faces[f];
+    Vector3d e[3];
+    for (int k = 0; k < 3; ++k) e[k] = X_[t[(k + 1) % 3]] - X_[t[k]];
+    const Vector3d c = e[0].cross(e[1]);
+    const double len = c.norm();
+    const double size = e[0].squaredNorm() + e[1].squaredNorm() + e[2].squaredNorm();
+    const bool degenerate = !(len > 1e-12 * size) || !std::isfinite(len);
+    if (!degenerate) normal_star_[f] = c / len;
+    const int s = face_style_[f];
+    face_active_[f] = !degenerate && s >= 0 && styles_[s].mu() > 0;
+    dual_[f] = {0, 0, 0};
+    Matrix3d cov = e[0] * slot_rest_[f][0].transpose();
+    cov.noalias() += e[1] * slot_rest_[f][1].transpose();
+    cov.noalias() += e[2] * slot_rest_[f][2].transpose();
+    face_cov_[f] = cov;
+  }
+  const int nE = static_cast<int>(topo_.edges.size());
+#pragma omp parallel for schedule(static)
+  for (int e = 0; e < nE; ++e) edge_star_[e] = X_[topo_.edges[e][1]] - X_[topo_.edges[e][0]];
+}
+
+void GaussSolver::fit_rotations() {
+  const int nV = topo_.num_vertices;
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < nV; ++v) {
+    const int begin = topo_.vertex_corner_start[v], end = topo_.vertex_corner_start[v + 1];
+    if (begin == end) continue;
+    Matrix3d M = Matrix3d::Zero();
+    for (int i = begin; i < end; ++i) M += face_cov_[topo_.vertex_corners[i] / 3];
+    rotation_[v] = closest_rotation_warm(M, rotation_q_[v]);
+  }
+}
+
+void GaussSolver::admm_round(bool first_round) {
+  const int nF = static_cast<int>(topo_.faces.size());
+  const double lam = lambda_;
+  // Normals (Eqs. 17-22); the previous round's dual update (Eq. 25) is fused in front.
+#pragma omp parallel for schedule(static)
+  for (int f = 0; f < nF; ++f) {
+    if (!face_active_[f]) continue;
+    Vector3d n = normal_star_[f];
+    const auto& fe = topo_.face_edge[f];
+    if (!first_round)
+      for (int k = 0; k < 3; ++k) dual_[f][k] += edge_star_[fe[k]].dot(n);
+    double g;
+    Vector3d grad_g;
+    Matrix3d hess_g;
+    styles_[face_style_[f]].evaluate(n, g, grad_g, hess_g);
+    Matrix3d H = -hess_g;
+    Vector3d grad = -grad_g;
+    for (int k = 0; k < 3; ++k) {
+      const Vector3d& es = edge_star_[fe[k]];
+      const double w = lam * edge_weight_[fe[k]];
+      H.noalias() += w * (es * es.transpose());
+      grad += (w * (es.dot(n) + dual_[f][k])) * es;
+    }
+    Vector3d newton;
+    Vector3d d;
+    if (solve_symmetric3(H, -grad, newton)) d = newton - newton.dot(n) * n;
+    // Fall back to a projected gradient step when Newton fails or points uphill.
+    if (!(d.allFinite() && d.dot(grad) <= 0)) d = -0.1 * (grad - grad.dot(n) * n);
+    const Vector3d m = n + d;
+    const double len = m.norm();
+    if (len > 1e-300 && std::isfinite(len)) normal_star_[f] = m / len;
+  }
+  // Edges (Eq. 24): (I + mu sum n n^T) e* = e - mu sum u n over the active faces of the edge.
+  const int nE = static_cast<int>(topo_.edges.size());
+#pragma omp parallel for schedule(static)
+  for (int e = 0; e < nE; ++e) {
+    const Vector3d cur = X_[topo_.edges[e][1]] - X_[topo_.edges[e][0]];
+    Matrix3d A = Matrix3d::Identity();
+    Vector3d b = cur;
+    bool any = false;
+    for (int i = topo_.edge_slot_start[e]; i < topo_.edge_slot_start[e + 1]; ++i) {
+      const int f = topo_.edge_slots[i] / 3, k = topo_.edge_slots[i] % 3;
+      if (!face_active_[f]) continue;
+      const double mu = styles_[face_style_[f]].mu();
+      const Vector3d& n = normal_star_[f];
+      A.noalias() += mu * (n * n.transpose());
+      b -= (mu * dual_[f][k]) * n;
+      any = true;
+    }
+    Vector3d x = cur;
+    if (any && solve_symmetric3(A, b, x)) edge_star_[e] = x;  // A >= I: always solvable
+    else edge_star_[e] = cur;
+  }
+}
+
+void GaussSolver::assemble_rhs() {
+  const int nF = static_cast<int>(topo_.faces.size());
+  const double lam = lambda_, inv = 1.0 / (1.0 + lambda_);
+#pragma omp parallel for schedule(static)
+  for (int f = 0; f < nF; ++f) {
+    const auto& t = topo_.faces[f];
+    // Spokes and rims: every vertex of the face rotates the face's three edges, so the ARAP target
+    // of an edge is the mean rotation of the face applied to its rest vector (Eq. 27).
+    const Matrix3d Rf = (rotation_[t[0]] + rotation_[t[1]] + rotation_[t[2]]) * (1.0 / 3.0);
+    Vector3d d[3];
+    for (int k = 0; k < 3; ++k) {
+      const double s = topo_.face_edge_sign[f][k];
+      d[k] = (Rf * slot_rest_[f][k] + (lam * slot_weight_[f][k] * s) * edge_star_[topo_.face_edge[f][k]]) * inv;
+    }
+    // Corner k is the head of slot k-1 and the tail of slot k.
+    for (int k = 0; k < 3; ++k) corner_rhs_[f][k] = d[(k + 2) % 3] - d[k];
+  }
+  const int n = static_cast<int>(vertex_of_unknown_.size());
+#pragma omp parallel for schedule(static)
+  for (int u = 0; u < n; ++u) {
+    const int v = vertex_of_unknown_[u];
+    Vector3d b = fixed_rhs_[u];
+    for (int i = topo_.vertex_corner_start[v]; i < topo_.vertex_corner_start[v + 1]; ++i) {
+      const int c = topo_.vertex_corners[i];
+      b += corner_rhs_[c / 3][c % 3];
+    }
+    rhs_[3 * u] = b.x();
+    rhs_[3 * u + 1] = b.y();
+    rhs_[3 * u + 2] = b.z();
+  }
+}
+
+void GaussSolver::solve_and_recenter() {
+  const int n = static_cast<int>(vertex_of_unknown_.size());
+  if (n > 0) cholesky_.solve_in_place(rhs_.data(), work_.data());
+  for (int u = 0; u < n; ++u) X_[vertex_of_unknown_[u]] = Vector3d(rhs_[3 * u], rhs_[3 * u + 1], rhs_[3 * u + 2]);
+  // Anchors went into the solve at their rest positions; translate each free component so that its
+  // centroid stays where the rest pose had it.
+  const int nV = topo_.num_vertices;
+  std::fill(component_sum_.begin(), component_sum_.end(), Vector3d::Zero());
+  for (int v = 0; v < nV; ++v) {
+    const int c = topo_.component[v];
+    if (c < 0 || !component_free_[c]) continue;
+    if (unknown_of_vertex_[v] < 0) X_[v] = rest_[v];  // the anchor
+    component_sum_[c] += X_[v];
+  }
+  for (int v = 0; v < nV; ++v) {
+    const int c = topo_.component[v];
+    if (c < 0 || !component_free_[c]) continue;
+    X_[v] += component_rest_center_[c] - component_sum_[c] / component_size_[c];
+  }
+}
+
+void GaussSolver::step() {
+  auto t0 = Clock::now();
+  face_pass();
+  timings_.faces = ms_since(t0);
+  t0 = Clock::now();
+  fit_rotations();
+  timings_.rotations = ms_since(t0);
+  t0 = Clock::now();
+  // The last round's dual update is skipped: duals are re-initialized at the next step and the
+  // global step does not read them.
+  for (int r = 0; r < admm_iterations_; ++r) admm_round(r == 0);
+  timings_.admm = ms_since(t0);
+  t0 = Clock::now();
+  assemble_rhs();
+  timings_.rhs = ms_since(t0);
+  t0 = Clock::now();
+  solve_and_recenter();
+  timings_.solve = ms_since(t0);
+  ++step_count_;
+}
+
+void GaussSolver::reset() {
+  X_ = rest_;
+  // The rotation warm start is state too: a reset run must repeat the first run bit for bit.
+  std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
+  for (size_t i = 0; i < pinned_.size(); ++i) X_[pinned_[i]] = (pin_targets_[i] - center_) / scale_;
+  step_count_ = 0;
+}
+
+template <typename T>
+static void write_vertices(const std::vector<Vector3d>& X, const std::vector<Vector3d>& input,
+                           const MeshTopology& topo, const std::vector<int64_t>& pinned,
+                           const std::vector<Vector3d>& targets, double scale, const Vector3d& center,
+                           T* out) {
+  const int nV = topo.num_vertices;
+  for (int v = 0; v < nV; ++v) {
+    const Vector3d p = topo.component[v] >= 0 ? Vector3d(X[v] * scale + center) : input[v];
+    out[3 * v] = static_cast<T>(p.x());
+    out[3 * v + 1] = static_cast<T>(p.y());
+    out[3 * v + 2] = static_cast<T>(p.z());
+  }
+  for (size_t i = 0; i < pinned.size(); ++i)
+    for (int k = 0; k < 3; ++k) out[3 * pinned[i] + k] = static_cast<T>(targets[i][k]);
+}
+
+void GaussSolver::copy_vertices(double* out) const {
+  write_vertices(X_, input_, topo_, pinned_, pin_targets_, scale_, center_, out);
+}
+void GaussSolver::copy_vertices(float* out) const {
+  write_vertices(X_, input_, topo_, pinned_, pin_targets_, scale_, center_, out);
+}
+
+double GaussSolver::arap_energy() const {
+  // E_ARAP (Eqs. 1-2) with spokes-and-rims neighbourhoods and each vertex's optimal rotation for the
+  // current mesh. A read-out, not on the step's path: it recomputes what it needs.
+  const int nV = topo_.num_vertices;
+  std::vector<double> per_vertex(nV, 0.0);
+#pragma omp parallel for schedule(static)
+  for (int v = 0; v < nV; ++v) {
+    const int begin = topo_.vertex_corner_start[v], end = topo_.vertex_corner_start[v + 1];
+    if (begin == end) continue;
+    Matrix3d M = Matrix3d::Zero();
+    for (int i = begin; i < end; ++i) {
+      const int f = topo_.vertex_corners[i] / 3;
+      const auto& t = topo_.faces[f];
+      for (int k = 0; k < 3; ++k) M += (X_[t[(k + 1) % 3]] - X_[t[k]]) * slot_rest_[f][k].transpose();
+    }
+    const Matrix3d R = closest_rotation(M);
+    double sum = 0;
+    for (int i = begin; i < end; ++i) {
+      const int f = topo_.vertex_corners[i] / 3;
+      const auto& t = topo_.faces[f];
+      for (int k = 0; k < 3; ++k) {
+        const Vector3d e = X_[t[(k + 1) % 3]] - X_[t[k]];
+        const Vector3d eh = rest_[t[(k + 1) % 3]] - rest_[t[k]];
+        sum += 0.5 * slot_weight_[f][k] * (e - R * eh).squaredNorm();
+      }
+    }
+    per_vertex[v] = sum;
+  }
+  double total = 0;  // sequential sum: identical for any thread count
+  for (double e : per_vertex) total += e;
+  return total;
+}
+
+double GaussSolver::g_energy() const {
+  double total = 0;
+  for (size_t f = 0; f < topo_.faces.size(); ++f) {
+    const int s = face_style_[f];
+    if (s < 0) continue;
+    const auto& t = topo_.faces[f];
+    const Vector3d c = (X_[t[1]] - X_[t[0]]).cross(X_[t[2]] - X_[t[0]]);
+    const double len = c.norm();
+    if (!(len > 0) || !std::isfinite(len)) continue;
+    total += styles_[s].value(c / len);
+  }
+  return total;
+}
+
+}  // namespace gauss
