@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -69,8 +70,15 @@ Eigen::Matrix3d read_rotation(const py::object& obj) {
   return R;
 }
 
+// py::array::ensure returns a null handle (numpy's error cleared) for ragged lists and the like.
+py::array as_array(const py::handle& obj, const char* name) {
+  py::array arr = py::array::ensure(obj);
+  if (!arr) throw py::type_error(std::string(name) + " must be array-like");
+  return arr;
+}
+
 Eigen::Vector3d read_vector3(const py::object& obj, const char* name) {
-  std::vector<double> v = read_matrix<double>(py::array::ensure(obj).reshape({1, -1}), 3, name, false);
+  std::vector<double> v = read_matrix<double>(as_array(obj, name).reshape({1, -1}), 3, name, false);
   return Eigen::Vector3d(v[0], v[1], v[2]);
 }
 
@@ -168,6 +176,8 @@ class Solver {
     }
     if (!(out.flags() & py::array::c_style) || !out.writeable())
       throw py::value_error("out must be a writeable C-contiguous array");
+    if (reinterpret_cast<std::uintptr_t>(out.data()) % static_cast<std::uintptr_t>(out.itemsize()) != 0)
+      throw py::value_error("out must be an aligned array (its data pointer is not a multiple of its item size)");
     std::lock_guard<std::mutex> lock(mutex_);
     if (py::isinstance<py::array_t<float>>(out) && out.dtype().is(py::dtype::of<float>()))
       solver_->copy_vertices(static_cast<float*>(out.mutable_data()));
@@ -236,7 +246,7 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
       .def(py::init([](const py::object& normals, double sigma, double mu, const py::object& rotation,
                        const py::object& axis, const py::object& ring_offsets, double axis_contribution) {
              StyleParams p;
-             if (!normals.is_none() && py::array::ensure(normals).size() > 0) {
+             if (!normals.is_none() && as_array(normals, "normals").size() > 0) {
                std::vector<double> n = read_matrix<double>(normals, 3, "normals", false);
                for (size_t i = 0; i + 2 < n.size(); i += 3) p.normals.emplace_back(n[i], n[i + 1], n[i + 2]);
              }

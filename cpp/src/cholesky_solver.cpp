@@ -27,51 +27,83 @@ void CholeskySolver::factor(const Eigen::SparseMatrix<double>& A) {
   Eigen::SparseMatrix<double> L = ldlt.matrixL();
   L.makeCompressed();
   col_start_.assign(n_ + 1, 0);
-  row_index_.clear();
-  values_.clear();
+  col_rows_.clear();
+  col_values_.clear();
+  row_start_.assign(n_ + 1, 0);
   for (int j = 0; j < n_; ++j) {
     for (Eigen::SparseMatrix<double>::InnerIterator it(L, j); it; ++it)
       if (it.row() > j) {
-        row_index_.push_back(static_cast<int>(it.row()));
-        values_.push_back(it.value());
+        col_rows_.push_back(static_cast<int>(it.row()));
+        col_values_.push_back(it.value());
+        ++row_start_[it.row() + 1];
       }
-    col_start_[j + 1] = static_cast<int>(values_.size());
+    col_start_[j + 1] = static_cast<int>(col_values_.size());
   }
+  for (int i = 0; i < n_; ++i) row_start_[i + 1] += row_start_[i];
+  row_cols_.resize(col_rows_.size());
+  row_values_.resize(col_values_.size());
+  std::vector<int> fill(row_start_.begin(), row_start_.end() - 1);
+  for (int j = 0; j < n_; ++j)  // columns in increasing order: each row's entries come out sorted
+    for (int k = col_start_[j]; k < col_start_[j + 1]; ++k) {
+      const int slot = fill[col_rows_[k]]++;
+      row_cols_[slot] = j;
+      row_values_[slot] = col_values_[k];
+    }
 }
 
+namespace {
+
+// s -= sum_k values[k] * y[idx[k]] for the three columns. Two independent accumulator sets halve the
+// floating-point dependency chain that otherwise bounds these sweeps; the pairing is fixed, so the
+// result does not depend on anything but the data.
+inline void subtract_gather(const int* idx, const double* values, int begin, int end, const double* y,
+                            double& s0, double& s1, double& s2) {
+  double a0 = 0, a1 = 0, a2 = 0, b0 = 0, b1 = 0, b2 = 0;
+  int k = begin;
+  for (; k + 1 < end; k += 2) {
+    const double* r = y + 3 * idx[k];
+    const double* t = y + 3 * idx[k + 1];
+    const double l = values[k], m = values[k + 1];
+    a0 += l * r[0];
+    a1 += l * r[1];
+    a2 += l * r[2];
+    b0 += m * t[0];
+    b1 += m * t[1];
+    b2 += m * t[2];
+  }
+  if (k < end) {
+    const double* r = y + 3 * idx[k];
+    const double l = values[k];
+    a0 += l * r[0];
+    a1 += l * r[1];
+    a2 += l * r[2];
+  }
+  s0 -= a0 + b0;
+  s1 -= a1 + b1;
+  s2 -= a2 + b2;
+}
+
+}  // namespace
+
 void CholeskySolver::solve_in_place(double* B, double* y) const {
+  // Forward: L y = P b, row by row.
   for (int i = 0; i < n_; ++i) {
     const int p = perm_[i];
-    y[3 * i] = B[3 * p];
-    y[3 * i + 1] = B[3 * p + 1];
-    y[3 * i + 2] = B[3 * p + 2];
-  }
-  // L y = Pb, column-oriented (scatter into later rows).
-  for (int j = 0; j < n_; ++j) {
-    const double y0 = y[3 * j], y1 = y[3 * j + 1], y2 = y[3 * j + 2];
-    for (int k = col_start_[j]; k < col_start_[j + 1]; ++k) {
-      double* r = y + 3 * row_index_[k];
-      const double l = values_[k];
-      r[0] -= l * y0;
-      r[1] -= l * y1;
-      r[2] -= l * y2;
-    }
+    double s0 = B[3 * p], s1 = B[3 * p + 1], s2 = B[3 * p + 2];
+    subtract_gather(row_cols_.data(), row_values_.data(), row_start_[i], row_start_[i + 1], y, s0, s1, s2);
+    y[3 * i] = s0;
+    y[3 * i + 1] = s1;
+    y[3 * i + 2] = s2;
   }
   for (int i = 0; i < n_; ++i) {
     y[3 * i] *= inv_diag_[i];
     y[3 * i + 1] *= inv_diag_[i];
     y[3 * i + 2] *= inv_diag_[i];
   }
-  // L^T x = y, row-oriented over L's columns (gather from later rows).
+  // Backward: L^T x = y, column by column of L.
   for (int j = n_ - 1; j >= 0; --j) {
     double s0 = y[3 * j], s1 = y[3 * j + 1], s2 = y[3 * j + 2];
-    for (int k = col_start_[j]; k < col_start_[j + 1]; ++k) {
-      const double* r = y + 3 * row_index_[k];
-      const double l = values_[k];
-      s0 -= l * r[0];
-      s1 -= l * r[1];
-      s2 -= l * r[2];
-    }
+    subtract_gather(col_rows_.data(), col_values_.data(), col_start_[j], col_start_[j + 1], y, s0, s1, s2);
     y[3 * j] = s0;
     y[3 * j + 1] = s1;
     y[3 * j + 2] = s2;

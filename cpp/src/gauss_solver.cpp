@@ -9,6 +9,7 @@
 
 #include "gauss/closest_rotation.h"
 #include "gauss/presets.h"
+#include "gauss/spatial_order.h"
 
 namespace gauss {
 namespace {
@@ -23,6 +24,10 @@ constexpr double kDegenerateRatio = 1e-8;
 // Cotangent weight given to each edge of a face that is degenerate in the rest pose: small and
 // positive, so the face still ties its vertices to the mesh and the Laplacian stays definite.
 constexpr double kDegenerateWeight = 1e-3;
+
+// Below this many items a loop runs on one thread: forking costs more than it saves, and on a
+// loaded machine (Blender's own threads) spinning workers can cost far more.
+constexpr int kParallelMin = 4096;
 
 double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
@@ -58,12 +63,27 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
       msg << "vertex " << i / 3 << " has a NaN or infinite coordinate";
       throw std::invalid_argument(msg.str());
     }
-  topo_ = build_mesh_topology(num_vertices, F, num_faces);
+  for (int i = 0; i < 3 * num_faces; ++i)
+    if (F[i] < 0 || F[i] >= num_vertices) {
+      std::ostringstream msg;
+      msg << "face " << i / 3 << " refers to vertex " << F[i] << ", but the mesh has " << num_vertices
+          << " vertices (valid indices are 0.." << num_vertices - 1 << ")";
+      throw std::invalid_argument(msg.str());
+    }
+  // Work in a cache-friendly numbering; the caller's numbering is restored on output.
+  std::vector<int> face_order;
+  spatial_order(V, num_vertices, F, num_faces, new_of_old_, face_order);
+  std::vector<int64_t> faces(3 * static_cast<size_t>(num_faces));
+  for (int f = 0; f < num_faces; ++f)
+    for (int k = 0; k < 3; ++k) faces[3 * f + k] = new_of_old_[F[3 * face_order[f] + k]];
+  topo_ = build_mesh_topology(num_vertices, faces.data(), num_faces);
+  for (int& f : topo_.input_face) f = face_order[f];
   num_input_faces_ = num_faces;
   lambda_ = lambda;
 
   input_.resize(num_vertices);
-  for (int v = 0; v < num_vertices; ++v) input_[v] = Vector3d(V[3 * v], V[3 * v + 1], V[3 * v + 2]);
+  for (int v = 0; v < num_vertices; ++v)
+    input_[new_of_old_[v]] = Vector3d(V[3 * v], V[3 * v + 1], V[3 * v + 2]);
   Vector3d lo = Vector3d::Constant(INFINITY), hi = Vector3d::Constant(-INFINITY), sum = Vector3d::Zero();
   int referenced = 0;
   for (int v = 0; v < num_vertices; ++v)
@@ -86,7 +106,7 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   const int nF = static_cast<int>(topo_.faces.size());
   normal_star_.assign(nF, Vector3d::UnitZ());
   dual_.assign(nF, {0, 0, 0});
-  face_active_.assign(nF, 0);
+  face_mu_.assign(nF, 0.0);
   edge_star_.assign(topo_.edges.size(), Vector3d::Zero());
   face_cov_.assign(nF, Matrix3d::Zero());
   rotation_.assign(num_vertices, Matrix3d::Identity());
@@ -120,6 +140,9 @@ void GaussSolver::compute_rest_quantities() {
       edge_weight_[topo_.face_edge[f][k]] += w;
     }
   }
+  slot_edge_weight_.resize(nF);
+  for (int f = 0; f < nF; ++f)
+    for (int k = 0; k < 3; ++k) slot_edge_weight_[f][k] = edge_weight_[topo_.face_edge[f][k]];
 }
 
 void GaussSolver::set_styles(std::vector<PreferenceFunction> styles) {
@@ -187,14 +210,16 @@ void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin
       throw std::invalid_argument(msg.str());
     }
     targets[i] = pin_positions ? Vector3d(pin_positions[3 * i], pin_positions[3 * i + 1], pin_positions[3 * i + 2])
-                               : input_[v];
+                               : input_[new_of_old_[v]];
     if (!targets[i].allFinite()) {
       std::ostringstream msg;
       msg << "the target of pinned vertex " << v << " is NaN or infinite";
       throw std::invalid_argument(msg.str());
     }
   }
-  pinned_ = pinned;
+  pinned_input_ = pinned;
+  pinned_.resize(pinned.size());
+  for (size_t i = 0; i < pinned.size(); ++i) pinned_[i] = new_of_old_[pinned[i]];
   pin_targets_ = std::move(targets);
   for (size_t i = 0; i < pinned_.size(); ++i) X_[pinned_[i]] = (pin_targets_[i] - center_) / scale_;
   factor();
@@ -266,7 +291,7 @@ void GaussSolver::factor() {
 
 void GaussSolver::face_pass() {
   const int nF = static_cast<int>(topo_.faces.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nF > kParallelMin)
   for (int f = 0; f < nF; ++f) {
     const auto& t = topo_.faces[f];
     Vector3d e[3];
@@ -277,7 +302,7 @@ void GaussSolver::face_pass() {
     const bool degenerate = !(len > 1e-12 * size) || !std::isfinite(len);
     if (!degenerate) normal_star_[f] = c / len;
     const int s = face_style_[f];
-    face_active_[f] = !degenerate && s >= 0 && styles_[s].mu() > 0;
+    face_mu_[f] = (!degenerate && s >= 0) ? styles_[s].mu() : 0.0;
     dual_[f] = {0, 0, 0};
     Matrix3d cov = e[0] * slot_rest_[f][0].transpose();
     cov.noalias() += e[1] * slot_rest_[f][1].transpose();
@@ -285,13 +310,13 @@ void GaussSolver::face_pass() {
     face_cov_[f] = cov;
   }
   const int nE = static_cast<int>(topo_.edges.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nE > kParallelMin)
   for (int e = 0; e < nE; ++e) edge_star_[e] = X_[topo_.edges[e][1]] - X_[topo_.edges[e][0]];
 }
 
 void GaussSolver::fit_rotations() {
   const int nV = topo_.num_vertices;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nV > kParallelMin)
   for (int v = 0; v < nV; ++v) {
     const int begin = topo_.vertex_corner_start[v], end = topo_.vertex_corner_start[v + 1];
     if (begin == end) continue;
@@ -305,9 +330,9 @@ void GaussSolver::admm_round(bool first_round) {
   const int nF = static_cast<int>(topo_.faces.size());
   const double lam = lambda_;
   // Normals (Eqs. 17-22); the previous round's dual update (Eq. 25) is fused in front.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nF > kParallelMin)
   for (int f = 0; f < nF; ++f) {
-    if (!face_active_[f]) continue;
+    if (face_mu_[f] == 0.0) continue;
     Vector3d n = normal_star_[f];
     const auto& fe = topo_.face_edge[f];
     if (!first_round)
@@ -320,7 +345,7 @@ void GaussSolver::admm_round(bool first_round) {
     Vector3d grad = -grad_g;
     for (int k = 0; k < 3; ++k) {
       const Vector3d& es = edge_star_[fe[k]];
-      const double w = lam * edge_weight_[fe[k]];
+      const double w = lam * slot_edge_weight_[f][k];
       H.noalias() += w * (es * es.transpose());
       grad += (w * (es.dot(n) + dual_[f][k])) * es;
     }
@@ -333,33 +358,52 @@ void GaussSolver::admm_round(bool first_round) {
     const double len = m.norm();
     if (len > 1e-300 && std::isfinite(len)) normal_star_[f] = m / len;
   }
-  // Edges (Eq. 24): (I + mu sum n n^T) e* = e - mu sum u n over the active faces of the edge.
+  // Edges (Eq. 24): (I + sum mu n n^T) e* = e - sum mu u n over the styled faces of the edge.
   const int nE = static_cast<int>(topo_.edges.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nE > kParallelMin)
   for (int e = 0; e < nE; ++e) {
     const Vector3d cur = X_[topo_.edges[e][1]] - X_[topo_.edges[e][0]];
+    // Collect the styled faces (usually one or two; more on non-manifold edges).
+    int count = 0;
+    double mu[2];
+    const Vector3d* nrm[2];
     Matrix3d A = Matrix3d::Identity();
     Vector3d b = cur;
-    bool any = false;
     for (int i = topo_.edge_slot_start[e]; i < topo_.edge_slot_start[e + 1]; ++i) {
       const int f = topo_.edge_slots[i] / 3, k = topo_.edge_slots[i] % 3;
-      if (!face_active_[f]) continue;
-      const double mu = styles_[face_style_[f]].mu();
+      const double m = face_mu_[f];
+      if (m == 0.0) continue;
       const Vector3d& n = normal_star_[f];
-      A.noalias() += mu * (n * n.transpose());
-      b -= (mu * dual_[f][k]) * n;
-      any = true;
+      b -= (m * dual_[f][k]) * n;
+      if (count < 2) {
+        mu[count] = m;
+        nrm[count] = &n;
+      }
+      A.noalias() += m * (n * n.transpose());
+      ++count;
     }
-    Vector3d x = cur;
-    if (any && solve_symmetric3(A, b, x)) edge_star_[e] = x;  // A >= I: always solvable
-    else edge_star_[e] = cur;
+    if (count == 0) {
+      edge_star_[e] = cur;
+    } else if (count == 1) {  // Sherman-Morrison: (I + m n n^T)^-1 b = b - m (n.b) / (1 + m) n
+      edge_star_[e] = b - (mu[0] * nrm[0]->dot(b) / (1.0 + mu[0])) * *nrm[0];
+    } else if (count == 2) {  // Woodbury with the 2x2 system (I + D N^T N) y = D N^T b
+      const Vector3d &n0 = *nrm[0], &n1 = *nrm[1];
+      const double c = n0.dot(n1), r0 = mu[0] * n0.dot(b), r1 = mu[1] * n1.dot(b);
+      const double a00 = 1.0 + mu[0], a01 = mu[0] * c, a10 = mu[1] * c, a11 = 1.0 + mu[1];
+      const double det = a00 * a11 - a01 * a10;  // >= 1 + mu0 + mu1 > 0 for unit normals
+      const double y0 = (a11 * r0 - a01 * r1) / det, y1 = (a00 * r1 - a10 * r0) / det;
+      edge_star_[e] = b - y0 * n0 - y1 * n1;
+    } else {
+      Vector3d x;
+      edge_star_[e] = solve_symmetric3(A, b, x) ? x : cur;  // A >= I: always solvable
+    }
   }
 }
 
 void GaussSolver::assemble_rhs() {
   const int nF = static_cast<int>(topo_.faces.size());
   const double lam = lambda_, inv = 1.0 / (1.0 + lambda_);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nF > kParallelMin)
   for (int f = 0; f < nF; ++f) {
     const auto& t = topo_.faces[f];
     // Spokes and rims: every vertex of the face rotates the face's three edges, so the ARAP target
@@ -374,7 +418,7 @@ void GaussSolver::assemble_rhs() {
     for (int k = 0; k < 3; ++k) corner_rhs_[f][k] = d[(k + 2) % 3] - d[k];
   }
   const int n = static_cast<int>(vertex_of_unknown_.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (int u = 0; u < n; ++u) {
     const int v = vertex_of_unknown_[u];
     Vector3d b = fixed_rhs_[u];
@@ -439,34 +483,29 @@ void GaussSolver::reset() {
 }
 
 template <typename T>
-static void write_vertices(const std::vector<Vector3d>& X, const std::vector<Vector3d>& input,
-                           const MeshTopology& topo, const std::vector<int64_t>& pinned,
-                           const std::vector<Vector3d>& targets, double scale, const Vector3d& center,
-                           T* out) {
-  const int nV = topo.num_vertices;
-  for (int v = 0; v < nV; ++v) {
-    const Vector3d p = topo.component[v] >= 0 ? Vector3d(X[v] * scale + center) : input[v];
-    out[3 * v] = static_cast<T>(p.x());
-    out[3 * v + 1] = static_cast<T>(p.y());
-    out[3 * v + 2] = static_cast<T>(p.z());
+void GaussSolver::write_vertices(T* out) const {
+  const int nV = topo_.num_vertices;
+  for (int old = 0; old < nV; ++old) {
+    const int v = new_of_old_[old];
+    const Vector3d p = topo_.component[v] >= 0 ? to_caller(X_[v]) : input_[v];
+    out[3 * old] = static_cast<T>(p.x());
+    out[3 * old + 1] = static_cast<T>(p.y());
+    out[3 * old + 2] = static_cast<T>(p.z());
   }
-  for (size_t i = 0; i < pinned.size(); ++i)
-    for (int k = 0; k < 3; ++k) out[3 * pinned[i] + k] = static_cast<T>(targets[i][k]);
+  // Pins are returned exactly as given, not through the normalization round trip.
+  for (size_t i = 0; i < pinned_input_.size(); ++i)
+    for (int k = 0; k < 3; ++k) out[3 * pinned_input_[i] + k] = static_cast<T>(pin_targets_[i][k]);
 }
 
-void GaussSolver::copy_vertices(double* out) const {
-  write_vertices(X_, input_, topo_, pinned_, pin_targets_, scale_, center_, out);
-}
-void GaussSolver::copy_vertices(float* out) const {
-  write_vertices(X_, input_, topo_, pinned_, pin_targets_, scale_, center_, out);
-}
+void GaussSolver::copy_vertices(double* out) const { write_vertices(out); }
+void GaussSolver::copy_vertices(float* out) const { write_vertices(out); }
 
 double GaussSolver::arap_energy() const {
   // E_ARAP (Eqs. 1-2) with spokes-and-rims neighbourhoods and each vertex's optimal rotation for the
   // current mesh. A read-out, not on the step's path: it recomputes what it needs.
   const int nV = topo_.num_vertices;
   std::vector<double> per_vertex(nV, 0.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (nV > kParallelMin)
   for (int v = 0; v < nV; ++v) {
     const int begin = topo_.vertex_corner_start[v], end = topo_.vertex_corner_start[v + 1];
     if (begin == end) continue;

@@ -17,14 +17,17 @@ class CholeskySolver {
   // `work` must hold n*3 doubles; no allocation happens here.
   void solve_in_place(double* B, double* work) const;
   int size() const { return n_; }
-  long long factor_nonzeros() const { return static_cast<long long>(values_.size()); }
+  long long factor_nonzeros() const { return static_cast<long long>(col_values_.size()); }
 
  private:
   int n_ = 0;
   std::vector<int> perm_;        // work[i] = B[perm_[i]]
-  std::vector<int> col_start_;   // strictly lower part of L, column-major (CSC)
-  std::vector<int> row_index_;
-  std::vector<double> values_;
+  // The strictly lower part of L twice: by rows for the forward sweep and by columns (= rows of L^T)
+  // for the backward sweep, so both sweeps gather into registers instead of scattering to memory.
+  std::vector<int> row_start_, row_cols_;
+  std::vector<double> row_values_;
+  std::vector<int> col_start_, col_rows_;
+  std::vector<double> col_values_;
   std::vector<double> inv_diag_;  // 1 / D
 };
 

@@ -67,7 +67,6 @@ class GaussSolver {
   int factorization_count() const { return factorization_count_; }
   int num_vertices() const { return topo_.num_vertices; }
   int num_input_faces() const { return num_input_faces_; }
-  const MeshTopology& topology() const { return topo_; }
   const StepTimings& last_timings() const { return timings_; }
   long long factor_nonzeros() const { return cholesky_.factor_nonzeros(); }
 
@@ -80,7 +79,12 @@ class GaussSolver {
   void assemble_rhs();
   void solve_and_recenter();
   Eigen::Vector3d to_caller(const Eigen::Vector3d& x) const { return x * scale_ + center_; }
+  template <typename T>
+  void write_vertices(T* out) const;
 
+  // Internally vertices and faces are renumbered for locality (spatial_order.h); every array
+  // below is in that numbering, the public interface in the caller's.
+  std::vector<int> new_of_old_;
   MeshTopology topo_;
   int num_input_faces_ = 0;
   std::vector<Eigen::Vector3d> input_;  // caller's coordinates, returned verbatim for fixed vertices
@@ -92,6 +96,7 @@ class GaussSolver {
   std::vector<std::array<double, 3>> slot_weight_;    // #F by 3: cot(opposite angle) / 2
   std::vector<std::array<Eigen::Vector3d, 3>> slot_rest_;  // #F by 3: weight * rest edge vector
   std::vector<double> edge_weight_;                  // #E: sum of the slot weights of the edge
+  std::vector<std::array<double, 3>> slot_edge_weight_;  // #F by 3: edge_weight_ of each slot (locality)
 
   // Styles.
   std::vector<PreferenceFunction> styles_;
@@ -100,7 +105,8 @@ class GaussSolver {
   // Constraints and system.
   double lambda_ = 4.0;
   int admm_iterations_ = 1;
-  std::vector<int64_t> pinned_;
+  std::vector<int64_t> pinned_;                      // internal numbering
+  std::vector<int64_t> pinned_input_;                // caller's numbering
   std::vector<Eigen::Vector3d> pin_targets_;         // caller's frame
   std::vector<int> unknown_of_vertex_;               // -1 for fixed / unreferenced vertices
   std::vector<int> vertex_of_unknown_;
@@ -114,7 +120,7 @@ class GaussSolver {
   // Per-step buffers (allocated once).
   std::vector<Eigen::Vector3d> normal_star_;                 // #F
   std::vector<std::array<double, 3>> dual_;                  // #F by 3 (u_fij, w.r.t. lo->hi edges)
-  std::vector<uint8_t> face_active_;                         // #F: styled and non-degenerate
+  std::vector<double> face_mu_;                              // #F: mu, 0 if unstyled or degenerate
   std::vector<Eigen::Vector3d> edge_star_;                   // #E (lo -> hi)
   std::vector<Eigen::Matrix3d> face_cov_;                    // #F: sum_k w e_k ehat_k^T
   std::vector<Eigen::Matrix3d> rotation_;                    // #V

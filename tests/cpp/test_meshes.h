@@ -1,0 +1,80 @@
+#pragma once
+// Meshes the C++ tests build in code, so the suite does not depend on ../shared for its core checks.
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gauss/mesh_io.h"
+
+namespace gauss_test {
+
+// Unit icosphere with `levels` 1:4 subdivisions (levels = 3: 642 vertices, 1280 faces).
+inline gauss::TriangleMesh icosphere(int levels) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<Eigen::Vector3d> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                                    {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                       {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                       {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                       {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (auto& p : v) p.normalize();
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int a, int b) {
+      auto key = std::minmax(a, b);
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      v.push_back((v[a] + v[b]).normalized());
+      return mid[key] = static_cast<int>(v.size()) - 1;
+    };
+    std::vector<std::array<int, 3>> g;
+    for (auto& tri : f) {
+      const int a = midpoint(tri[0], tri[1]), b = midpoint(tri[1], tri[2]), c = midpoint(tri[2], tri[0]);
+      g.push_back({tri[0], a, c});
+      g.push_back({tri[1], b, a});
+      g.push_back({tri[2], c, b});
+      g.push_back({a, b, c});
+    }
+    f = g;
+  }
+  gauss::TriangleMesh m;
+  for (auto& p : v) m.V.insert(m.V.end(), {p.x(), p.y(), p.z()});
+  for (auto& tri : f) m.F.insert(m.F.end(), {tri[0], tri[1], tri[2]});
+  return m;
+}
+
+// Closed cube [-1,1]^3 with an n x n grid of quads (two triangles each) on every side, outward normals.
+inline gauss::TriangleMesh grid_cube(int n) {
+  gauss::TriangleMesh m;
+  std::map<std::array<long, 3>, int> index;
+  auto vertex = [&](const Eigen::Vector3d& p) {
+    std::array<long, 3> key = {std::lround(p.x() * 1e6), std::lround(p.y() * 1e6), std::lround(p.z() * 1e6)};
+    auto it = index.find(key);
+    if (it != index.end()) return it->second;
+    m.V.insert(m.V.end(), {p.x(), p.y(), p.z()});
+    return index[key] = m.num_vertices() - 1;
+  };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sign = -1; sign <= 1; sign += 2) {
+      Eigen::Vector3d nrm = Eigen::Vector3d::Zero();
+      nrm[axis] = sign;
+      Eigen::Vector3d u = Eigen::Vector3d::Zero(), w = Eigen::Vector3d::Zero();
+      u[(axis + 1) % 3] = 1;
+      w[(axis + 2) % 3] = 1;
+      if (sign < 0) std::swap(u, w);  // keep (u x w) = outward normal
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          auto P = [&](int a, int b) { return Eigen::Vector3d(nrm + u * (-1 + 2.0 * a / n) + w * (-1 + 2.0 * b / n)); };
+          const int p00 = vertex(P(i, j)), p10 = vertex(P(i + 1, j)), p11 = vertex(P(i + 1, j + 1)), p01 = vertex(P(i, j + 1));
+          m.F.insert(m.F.end(), {p00, p10, p11, p00, p11, p01});
+        }
+    }
+  return m;
+}
+
+inline std::string shared_mesh(const std::string& rel) { return std::string(GAUSS_MESH_DIR) + "/" + rel; }
+
+}  // namespace gauss_test

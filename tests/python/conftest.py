@@ -1,0 +1,9 @@
+"""Makes the freshly built gauss_core importable: GAUSS_BUILD_DIR/python (default: <repo>/build)."""
+import os
+import pathlib
+import sys
+
+REPO = pathlib.Path(__file__).resolve().parents[2]
+BUILD = pathlib.Path(os.environ.get("GAUSS_BUILD_DIR", REPO / "build"))
+sys.path.insert(0, str(BUILD / "python"))
+SHARED_MESHES = REPO.parent / "shared" / "meshes"
