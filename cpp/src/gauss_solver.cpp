@@ -350,7 +350,7 @@ void GaussSolver::admm_round(bool first_round) {
       grad += (w * (es.dot(n) + dual_[f][k])) * es;
     }
     Vector3d newton;
-    Vector3d d;
+    Vector3d d = Vector3d::Constant(NAN);  // stays NaN (-> the fallback below) if Newton fails
     if (solve_symmetric3(H, -grad, newton)) d = newton - newton.dot(n) * n;
     // Fall back to a projected gradient step when Newton fails or points uphill.
     if (!(d.allFinite() && d.dot(grad) <= 0)) d = -0.1 * (grad - grad.dot(n) * n);

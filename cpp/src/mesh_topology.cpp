@@ -48,30 +48,34 @@ MeshTopology build_mesh_topology(int num_vertices, const int64_t* F, int num_inp
     throw std::invalid_argument("the mesh has no usable triangle (no faces, or every face repeats a vertex)");
   const int nF = static_cast<int>(t.faces.size());
 
-  // Unique undirected edges, numbered in sorted (lo, hi) order so the numbering is deterministic.
-  std::vector<uint64_t> keys(3 * nF);
+  // Unique undirected edges, numbered in (lo, hi) order so the numbering is deterministic: slots are
+  // bucketed by their lower vertex (counting sort), each small bucket sorted by the higher one.
+  const int nS = 3 * nF;
+  std::vector<int> slot_lo(nS), slot_hi(nS);
   for (int f = 0; f < nF; ++f)
     for (int k = 0; k < 3; ++k) {
-      const uint64_t a = t.faces[f][k], b = t.faces[f][(k + 1) % 3];
-      keys[3 * f + k] = (std::min(a, b) << 32) | std::max(a, b);
+      const int a = t.faces[f][k], b = t.faces[f][(k + 1) % 3];
+      slot_lo[3 * f + k] = std::min(a, b);
+      slot_hi[3 * f + k] = std::max(a, b);
     }
-  std::vector<uint64_t> unique_keys = keys;
-  std::sort(unique_keys.begin(), unique_keys.end());
-  unique_keys.erase(std::unique(unique_keys.begin(), unique_keys.end()), unique_keys.end());
-  t.edges.resize(unique_keys.size());
-  for (size_t e = 0; e < unique_keys.size(); ++e)
-    t.edges[e] = {static_cast<int>(unique_keys[e] >> 32), static_cast<int>(unique_keys[e] & 0xffffffffu)};
-
+  std::vector<int> bucket_start, bucket_slots;
+  build_csr(num_vertices, slot_lo, bucket_start, bucket_slots);
+  std::vector<int> slot_edge(nS);
   t.face_edge.resize(nF);
   t.face_edge_sign.resize(nF);
-  std::vector<int> slot_edge(3 * nF);
+  for (int v = 0; v < num_vertices; ++v) {
+    int* begin = bucket_slots.data() + bucket_start[v];
+    int* end = bucket_slots.data() + bucket_start[v + 1];
+    std::sort(begin, end, [&](int x, int y) { return slot_hi[x] != slot_hi[y] ? slot_hi[x] < slot_hi[y] : x < y; });
+    for (int* it = begin; it != end; ++it) {
+      if (it == begin || slot_hi[*it] != slot_hi[*(it - 1)]) t.edges.push_back({v, slot_hi[*it]});
+      slot_edge[*it] = static_cast<int>(t.edges.size()) - 1;
+    }
+  }
   for (int f = 0; f < nF; ++f)
     for (int k = 0; k < 3; ++k) {
-      const int e = static_cast<int>(
-          std::lower_bound(unique_keys.begin(), unique_keys.end(), keys[3 * f + k]) - unique_keys.begin());
-      t.face_edge[f][k] = e;
+      t.face_edge[f][k] = slot_edge[3 * f + k];
       t.face_edge_sign[f][k] = (t.faces[f][k] < t.faces[f][(k + 1) % 3]) ? 1 : -1;
-      slot_edge[3 * f + k] = e;
     }
   build_csr(static_cast<int>(t.edges.size()), slot_edge, t.edge_slot_start, t.edge_slots);
 

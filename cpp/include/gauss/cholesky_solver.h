@@ -1,7 +1,12 @@
 #pragma once
-// Sparse LDL^T factorization of the (constant) global-step matrix, with a solve that carries all
+// Sparse LDL^T factorization (AMD ordering, up-looking) of the (constant) global-step matrix, with a solve that carries all
 // three coordinate columns through one forward and one backward sweep: the factor is streamed from
 // memory twice per step instead of six times, which is what bounds the global step on large meshes.
+//
+// The factorization and the sweeps also run on several threads: rows in disjoint subtrees of the elimination tree never
+// read each other, so the tree is cut into one group of subtrees per thread (balanced by nonzeros)
+// plus the rows above the cut, which run alone. Every row is still computed by the same sequence of
+// operations, so the result does not depend on the number of threads.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <vector>
@@ -29,6 +34,10 @@ class CholeskySolver {
   std::vector<int> col_start_, col_rows_;
   std::vector<double> col_values_;
   std::vector<double> inv_diag_;  // 1 / D
+  // Rows of each thread's subtrees (ascending), then the rows above the cut (ascending).
+  std::vector<std::vector<int>> parallel_rows_;
+  std::vector<int> top_rows_;
+  void partition_elimination_tree(const std::vector<int>& parent, const std::vector<double>& work, int parts);
 };
 
 }  // namespace gauss
