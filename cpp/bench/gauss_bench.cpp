@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
     const double setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
     std::vector<double> step_ms, faces, rotations, admm_ms, rhs, solve;
+    int multi_threaded_steps = 0;
     for (int s = 0; s < steps; ++s) {
       const auto t = std::chrono::steady_clock::now();
       solver.step();
@@ -85,8 +86,10 @@ int main(int argc, char** argv) {
       admm_ms.push_back(pt.admm);
       rhs.push_back(pt.rhs);
       solve.push_back(pt.solve);
+      multi_threaded_steps += pt.threads > 1;
     }
     std::printf("setup_ms: %.2f\n", setup_ms);
+    std::printf("steps_on_all_threads: %d of %d\n", multi_threaded_steps, steps);
     std::printf("factor_nonzeros: %lld\n", solver.factor_nonzeros());
     std::printf("step_ms_median: %.3f\n", median(step_ms));
     std::printf("phase_faces_ms_median: %.3f\n", median(faces));

@@ -378,7 +378,7 @@ By default one cube style (sigma 4, mu 1) applies to every face.)doc")
       .def_property_readonly("last_step_ms", [](Solver& s) {
              const gauss::StepTimings& t = s.core().last_timings();
              py::dict d;
-             d["faces"] = t.faces; d["rotations"] = t.rotations; d["admm"] = t.admm; d["rhs"] = t.rhs; d["solve"] = t.solve;
+             d["faces"] = t.faces; d["rotations"] = t.rotations; d["admm"] = t.admm; d["rhs"] = t.rhs; d["solve"] = t.solve; d["threads"] = t.threads;
              return d;
            }, "Milliseconds per phase of the last step.");
 }

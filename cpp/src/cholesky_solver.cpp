@@ -62,8 +62,9 @@ void CholeskySolver::factor(const Eigen::SparseMatrix<double>& A) {
     Eigen::AMDOrdering<int>()(full, amd);
   }
   perm_.assign(amd.indices().data(), amd.indices().data() + n);  // perm_[new] = old
-  std::vector<int> new_of_old(n);
-  for (int i = 0; i < n; ++i) new_of_old[perm_[i]] = i;
+  new_of_old_.assign(n, 0);
+  for (int i = 0; i < n; ++i) new_of_old_[perm_[i]] = i;
+  const std::vector<int>& new_of_old = new_of_old_;
 
   // The permuted matrix's upper triangle by columns: column k holds row k of the lower triangle.
   std::vector<int> up_start(n + 1, 0), up_rows;
@@ -252,9 +253,16 @@ void CholeskySolver::partition_elimination_tree(const std::vector<int>& parent, 
 }
 
 void CholeskySolver::solve_in_place(double* B, double* y) const {
+  for (int i = 0; i < n_; ++i)
+    for (int c = 0; c < 3; ++c) y[3 * i + c] = B[3 * perm_[i] + c];
+  solve_ordered_in_place(y);
+  for (int i = 0; i < n_; ++i)
+    for (int c = 0; c < 3; ++c) B[3 * perm_[i] + c] = y[3 * i + c];
+}
+
+void CholeskySolver::solve_ordered_in_place(double* y) const {
   auto forward_row = [&](int i) {
-    const int p = perm_[i];
-    double s0 = B[3 * p], s1 = B[3 * p + 1], s2 = B[3 * p + 2];
+    double s0 = y[3 * i], s1 = y[3 * i + 1], s2 = y[3 * i + 2];
     subtract_gather(row_cols_.data(), row_values_.data(), row_start_[i], row_start_[i + 1], y, s0, s1, s2);
     y[3 * i] = s0;
     y[3 * i + 1] = s1;
@@ -268,7 +276,7 @@ void CholeskySolver::solve_in_place(double* B, double* y) const {
     y[3 * j + 2] = s2;
   };
   const int parts = static_cast<int>(parallel_rows_.size());
-  // Forward (L y = P b): the subtrees, one part per thread, then the rows above the cut.
+  // Forward (L y = b): the subtrees, one part per thread, then the rows above the cut.
 #pragma omp parallel for schedule(static, 1) if (parts > 1 && n_ > 4096)
   for (int t = 0; t < parts; ++t)
     for (int i : parallel_rows_[t]) forward_row(i);
@@ -279,12 +287,6 @@ void CholeskySolver::solve_in_place(double* B, double* y) const {
 #pragma omp parallel for schedule(static, 1) if (parts > 1 && n_ > 4096)
   for (int t = 0; t < parts; ++t)
     for (auto it = parallel_rows_[t].rbegin(); it != parallel_rows_[t].rend(); ++it) backward_row(*it);
-  for (int i = 0; i < n_; ++i) {
-    const int p = perm_[i];
-    B[3 * p] = y[3 * i];
-    B[3 * p + 1] = y[3 * i + 1];
-    B[3 * p + 2] = y[3 * i + 2];
-  }
 }
 
 }  // namespace gauss

@@ -7,6 +7,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "gauss/closest_rotation.h"
 #include "gauss/presets.h"
 #include "gauss/spatial_order.h"
@@ -286,7 +290,6 @@ void GaussSolver::factor() {
   }
   ++factorization_count_;
   rhs_.assign(3 * static_cast<size_t>(n), 0.0);
-  work_.assign(3 * static_cast<size_t>(n), 0.0);
 }
 
 void GaussSolver::face_pass() {
@@ -351,7 +354,13 @@ void GaussSolver::admm_round(bool first_round) {
     }
     Vector3d newton;
     Vector3d d = Vector3d::Constant(NAN);  // stays NaN (-> the fallback below) if Newton fails
-    if (solve_symmetric3(H, -grad, newton)) d = newton - newton.dot(n) * n;
+    if (solve_symmetric3(H, -grad, newton)) {
+      d = newton - newton.dot(n) * n;
+      // A tangential part at rounding level means Newton only rescales n (exactly so in the first
+      // round for styles that depend on x.axis alone: plane, cylinder, cone); its sign is noise, and
+      // trusting it made the result depend on the mesh's position. Use the fallback instead.
+      if (!(d.norm() > 1e-8 * newton.norm())) d = Vector3d::Constant(NAN);
+    }
     // Fall back to a projected gradient step when Newton fails or points uphill.
     if (!(d.allFinite() && d.dot(grad) <= 0)) d = -0.1 * (grad - grad.dot(n) * n);
     const Vector3d m = n + d;
@@ -426,16 +435,18 @@ void GaussSolver::assemble_rhs() {
       const int c = topo_.vertex_corners[i];
       b += corner_rhs_[c / 3][c % 3];
     }
-    rhs_[3 * u] = b.x();
-    rhs_[3 * u + 1] = b.y();
-    rhs_[3 * u + 2] = b.z();
+    double* r = &rhs_[3 * static_cast<size_t>(cholesky_.position(u))];  // elimination order
+    r[0] = b.x();
+    r[1] = b.y();
+    r[2] = b.z();
   }
 }
 
 void GaussSolver::solve_and_recenter() {
   const int n = static_cast<int>(vertex_of_unknown_.size());
-  if (n > 0) cholesky_.solve_in_place(rhs_.data(), work_.data());
-  for (int u = 0; u < n; ++u) X_[vertex_of_unknown_[u]] = Vector3d(rhs_[3 * u], rhs_[3 * u + 1], rhs_[3 * u + 2]);
+  if (n > 0) cholesky_.solve_ordered_in_place(rhs_.data());
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (int u = 0; u < n; ++u) X_[vertex_of_unknown_[u]] = Vector3d(&rhs_[3 * static_cast<size_t>(cholesky_.position(u))]);
   // Anchors went into the solve at their rest positions; translate each free component so that its
   // centroid stays where the rest pose had it.
   const int nV = topo_.num_vertices;
@@ -454,7 +465,13 @@ void GaussSolver::solve_and_recenter() {
 }
 
 void GaussSolver::step() {
-  auto t0 = Clock::now();
+#ifdef _OPENMP
+  const int max_threads = omp_get_max_threads();
+  const int threads = tuner_.next(max_threads);
+  omp_set_num_threads(threads);  // this thread's setting only; restored below
+#endif
+  const auto start = Clock::now();
+  auto t0 = start;
   face_pass();
   timings_.faces = ms_since(t0);
   t0 = Clock::now();
@@ -472,6 +489,11 @@ void GaussSolver::step() {
   solve_and_recenter();
   timings_.solve = ms_since(t0);
   ++step_count_;
+#ifdef _OPENMP
+  tuner_.record(threads, ms_since(start));
+  timings_.threads = threads;
+  omp_set_num_threads(max_threads);
+#endif
 }
 
 void GaussSolver::reset() {

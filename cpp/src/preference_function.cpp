@@ -1,6 +1,8 @@
 #include "gauss/preference_function.h"
 
+
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -66,6 +68,11 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p) : sigma_(p.sigma), 
     normal_weights_ = solve_unit_weights(A, "preferred normals");
     if (has_rings())
       for (double& w : normal_weights_) w *= p.axis_contribution;
+    for (int k = 0; k < K; ++k) {
+      const Eigen::Vector3d& n = normals_[k];
+      terms_.push_back({n.x(), n.y(), n.z(), n.x() * n.x(), n.x() * n.y(), n.x() * n.z(), n.y() * n.y(),
+                        n.y() * n.z(), n.z() * n.z(), normal_weights_[k]});
+    }
   }
   const int R = static_cast<int>(offsets_.size());
   if (R > 0) {
@@ -80,32 +87,46 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p) : sigma_(p.sigma), 
 }
 
 double PreferenceFunction::value(const Eigen::Vector3d& x) const {
-  double g = 0.0;
-  for (size_t k = 0; k < normals_.size(); ++k)
-    g += normal_weights_[k] * std::exp(sigma_ * (x.dot(normals_[k]) - 1.0));
-  if (has_rings()) {
-    const double ax = x.dot(axis_);
-    for (size_t r = 0; r < offsets_.size(); ++r) {
-      const double t = ax - offsets_[r];
-      g += ring_weights_[r] * std::exp(-sigma_ * t * t);
-    }
-  }
+  double g;
+  Eigen::Vector3d grad;
+  Eigen::Matrix3d hess;
+  evaluate(x, g, grad, hess);
   return g;
 }
 
 void PreferenceFunction::evaluate(const Eigen::Vector3d& x, double& g, Eigen::Vector3d& grad,
                                   Eigen::Matrix3d& hess) const {
-  g = 0.0;
-  grad.setZero();
-  hess.setZero();
   const double s = sigma_;
-  for (size_t k = 0; k < normals_.size(); ++k) {
-    const Eigen::Vector3d& n = normals_[k];
-    const double e = normal_weights_[k] * std::exp(s * (x.dot(n) - 1.0));
-    g += e;
-    grad += (s * e) * n;
-    hess.noalias() += (s * s * e) * (n * n.transpose());
+  // Discrete normals in chunks: arguments, exponentials, then the accumulation of g, its gradient
+  // and the upper triangle of its Hessian from the precomputed n n^T.
+  constexpr int kChunk = 32;
+  double e[kChunk];
+  double v = 0, g0 = 0, g1 = 0, g2 = 0, h00 = 0, h01 = 0, h02 = 0, h11 = 0, h12 = 0, h22 = 0;
+  const int K = static_cast<int>(terms_.size());
+  for (int begin = 0; begin < K; begin += kChunk) {
+    const int count = std::min(kChunk, K - begin);
+    const std::array<double, 10>* t = terms_.data() + begin;
+    for (int k = 0; k < count; ++k)
+      e[k] = s * (x.x() * t[k][0] + x.y() * t[k][1] + x.z() * t[k][2] - 1.0);
+    for (int k = 0; k < count; ++k) e[k] = t[k][9] * std::exp(e[k]);
+    for (int k = 0; k < count; ++k) {
+      const double c = e[k];
+      v += c;
+      g0 += c * t[k][0];
+      g1 += c * t[k][1];
+      g2 += c * t[k][2];
+      h00 += c * t[k][3];
+      h01 += c * t[k][4];
+      h02 += c * t[k][5];
+      h11 += c * t[k][6];
+      h12 += c * t[k][7];
+      h22 += c * t[k][8];
+    }
   }
+  g = v;
+  grad = Eigen::Vector3d(g0, g1, g2) * s;
+  const double s2 = s * s;
+  hess << h00 * s2, h01 * s2, h02 * s2, h01 * s2, h11 * s2, h12 * s2, h02 * s2, h12 * s2, h22 * s2;
   if (has_rings()) {
     const double ax = x.dot(axis_);
     double dg = 0.0, ddg = 0.0;  // derivatives of the ring terms along the axis

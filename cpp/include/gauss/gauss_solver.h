@@ -22,11 +22,13 @@
 #include "gauss/cholesky_solver.h"
 #include "gauss/mesh_topology.h"
 #include "gauss/preference_function.h"
+#include "gauss/thread_tuner.h"
 
 namespace gauss {
 
 struct StepTimings {  // milliseconds spent in each phase of the last step
   double faces = 0, rotations = 0, admm = 0, rhs = 0, solve = 0;
+  int threads = 1;  // OpenMP threads the step ran on (see thread_tuner.h)
 };
 
 class GaussSolver {
@@ -126,9 +128,10 @@ class GaussSolver {
   std::vector<Eigen::Matrix3d> rotation_;                    // #V
   std::vector<Eigen::Quaterniond> rotation_q_;               // #V: warm start of the rotation fit
   std::vector<std::array<Eigen::Vector3d, 3>> corner_rhs_;   // #F by 3
-  std::vector<double> rhs_, work_;                           // #unknowns by 3
+  std::vector<double> rhs_;                                  // #unknowns by 3, elimination order
   std::vector<Eigen::Vector3d> component_sum_;
   StepTimings timings_;
+  ThreadTuner tuner_;
   int step_count_ = 0;
 };
 

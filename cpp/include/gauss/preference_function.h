@@ -7,6 +7,7 @@
 //   w_r exp(sigma (1 - (x.a - d)^2)) == w'_r exp(-sigma (x.a - d)^2),  w'_r = w_r e^sigma
 // so no term exceeds its weight and g, grad g, Hess g stay finite for any sigma > 0.
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 namespace gauss {
@@ -46,6 +47,8 @@ class PreferenceFunction {
  private:
   std::vector<Eigen::Vector3d> normals_;
   std::vector<double> normal_weights_;  // w'_k, axis contribution already folded in
+  // Per normal: n (3), the upper triangle of n n^T (6) and w'_k, contiguous for the hot loop.
+  std::vector<std::array<double, 10>> terms_;
   Eigen::Vector3d axis_;
   std::vector<double> offsets_;
   std::vector<double> ring_weights_;    // w'_r
