@@ -1,0 +1,41 @@
+"""Gauss Stylization: stylize meshes by preferred face normals.
+
+The add-on is a thin client of the bundled native solver ``gauss_core``:
+Blender mesh -> numpy arrays -> solver -> numpy arrays -> mesh.
+"""
+
+bl_info = {
+    "name": "Gauss Stylization",
+    "author": "Gauss Stylization for Blender contributors",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "View3D > Sidebar > Gauss",
+    "description": "Stylize a mesh live by the face normals it should prefer (cube, pyramid, custom...)",
+    "category": "Mesh",
+}
+
+if "bpy" in locals():  # F8 / script reload: reload the submodules too
+    import importlib
+    for _module in (native, properties, mesh_io, styles, validation, output, rest_store,
+                    settings_io, session, operators, slot_operators, ui):
+        importlib.reload(_module)
+else:
+    from . import (native, properties, mesh_io, styles, validation, output, rest_store,
+                   settings_io, session, operators, slot_operators, ui)
+
+import bpy
+
+classes = properties.classes + operators.classes + slot_operators.classes + ui.classes
+
+
+def register():
+    for cls in classes:
+        bpy.utils.register_class(cls)
+    properties.register_pointer()
+
+
+def unregister():
+    operators.stop_all(bpy.context)
+    properties.unregister_pointer()
+    for cls in reversed(classes):
+        bpy.utils.unregister_class(cls)

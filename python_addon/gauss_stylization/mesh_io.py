@@ -1,0 +1,127 @@
+"""Blender mesh <-> numpy arrays.
+
+All bulk data goes through ``foreach_get``/``foreach_set`` with preallocated
+float32/int32 arrays: Blender stores coordinates as float32 and indices as
+int32, so these calls are plain memory copies, and nothing loops over vertices
+in Python except the one-time read of vertex-group weights (Blender has no bulk
+accessor for those).
+"""
+
+import numpy as np
+
+
+class MeshArrays:
+    """Topology and base coordinates of a mesh, read once when stylization starts.
+
+    coords:         (#V, 3) float32, base shape (reference shape key if the mesh has keys)
+    triangles:      (#T, 3) int32, loop triangles = what the solver sees
+    tri_polygon:    (#T,) int32, polygon each triangle comes from
+    corner_vertex / corner_polygon: (#corners,) int32, vertex and polygon of each face corner
+    polygon_sides:  (#P,) int32, corners per polygon
+    """
+
+    def __init__(self, mesh):
+        self.num_vertices = len(mesh.vertices)
+        self.num_polygons = len(mesh.polygons)
+        self.coords = np.empty((self.num_vertices, 3), np.float32)
+        read_base_coords(mesh, self.coords)
+        self.triangles, self.tri_polygon = _read_loop_triangles(mesh)
+        self.corner_vertex, self.corner_polygon, self.polygon_sides = _read_corners(mesh)
+
+    def polygon_average(self, vertex_values):
+        """Mean of a per-vertex float array over each polygon's corners."""
+        sums = np.bincount(self.corner_polygon, weights=vertex_values[self.corner_vertex],
+                           minlength=self.num_polygons)
+        return sums / np.maximum(self.polygon_sides, 1)
+
+
+def base_key(mesh):
+    """The reference shape key, or None. With shape keys Blender displays the
+    key data, so the base shape lives in the reference key, not in vertices.co."""
+    keys = mesh.shape_keys
+    return keys.reference_key if keys is not None and len(keys.key_blocks) else None
+
+
+def read_base_coords(mesh, out):
+    """Fill ``out`` ((#V,3) float32, C-contiguous) with the base shape."""
+    key = base_key(mesh)
+    source = key.data if key is not None else mesh.vertices
+    source.foreach_get("co", out.reshape(-1))
+
+
+def write_vertex_coords(mesh, coords):
+    mesh.vertices.foreach_set("co", coords.reshape(-1))
+
+
+def write_key_coords(key_block, coords):
+    key_block.data.foreach_set("co", coords.reshape(-1))
+
+
+def read_key_coords(key_block, num_vertices):
+    out = np.empty((num_vertices, 3), np.float32)
+    key_block.data.foreach_get("co", out.reshape(-1))
+    return out
+
+
+def read_vertex_coords(mesh):
+    out = np.empty((len(mesh.vertices), 3), np.float32)
+    mesh.vertices.foreach_get("co", out.reshape(-1))
+    return out
+
+
+def tag_changed(mesh):
+    """Tell Blender the geometry changed (normals, depsgraph, viewport)."""
+    mesh.update()
+
+
+def _read_loop_triangles(mesh):
+    # Blender < 4.1 needs an explicit call; newer versions compute them on demand.
+    if hasattr(mesh, "calc_loop_triangles"):
+        mesh.calc_loop_triangles()
+    count = len(mesh.loop_triangles)
+    triangles = np.empty((count, 3), np.int32)
+    tri_polygon = np.empty(count, np.int32)
+    mesh.loop_triangles.foreach_get("vertices", triangles.reshape(-1))
+    mesh.loop_triangles.foreach_get("polygon_index", tri_polygon)
+    return triangles, tri_polygon
+
+
+def _read_corners(mesh):
+    """Corner -> vertex and corner -> polygon, ordered polygon by polygon.
+
+    Polygons normally store their corners contiguously in order, but that is
+    not guaranteed, so the corner list is gathered through loop_start.
+    """
+    num_polygons = len(mesh.polygons)
+    loop_vertex = np.empty(len(mesh.loops), np.int32)
+    mesh.loops.foreach_get("vertex_index", loop_vertex)
+    loop_start = np.empty(num_polygons, np.int32)
+    sides = np.empty(num_polygons, np.int32)
+    mesh.polygons.foreach_get("loop_start", loop_start)
+    mesh.polygons.foreach_get("loop_total", sides)
+    corner_polygon = np.repeat(np.arange(num_polygons, dtype=np.int32), sides)
+    first_corner = np.repeat(np.cumsum(sides) - sides, sides)
+    corner_loop = np.repeat(loop_start, sides) + (np.arange(len(corner_polygon)) - first_corner)
+    return loop_vertex[corner_loop], corner_polygon, sides
+
+
+def read_group_weights(obj):
+    """{vertex group name: (#V,) float32 weights}, for every group of ``obj``.
+
+    This is the only per-vertex Python loop of the add-on; it runs once when
+    stylization starts (Blender offers no bulk access to deform weights).
+    """
+    mesh = obj.data
+    names = [group.name for group in obj.vertex_groups]
+    weights = np.zeros((len(names), len(mesh.vertices)), np.float32)
+    if names:
+        rows, cols, values = [], [], []
+        for vertex in mesh.vertices:
+            for element in vertex.groups:
+                rows.append(element.group)
+                cols.append(vertex.index)
+                values.append(element.weight)
+        rows = np.asarray(rows, np.int64)
+        valid = rows < len(names)  # stale entries of deleted groups are ignored
+        weights[rows[valid], np.asarray(cols, np.int64)[valid]] = np.asarray(values, np.float32)[valid]
+    return {name: weights[i] for i, name in enumerate(names)}

@@ -1,0 +1,267 @@
+"""Operators: Stylize (live modal run or scripted steps) and Reset."""
+
+import time
+
+import bpy
+from bpy.props import IntProperty, StringProperty
+
+from . import rest_store, settings_io
+from .native import NativeModuleError
+from .session import Session, ensure_style_slot
+from .validation import SettingsError, object_problem, poll_result
+
+TICK_SECONDS = 0.01
+HINT = "Enter / Left-click: keep  |  Esc / Right-click: cancel"
+
+# Objects (by pointer) with a live run, so a second Stylize or a Reset cannot
+# interfere with it. Module state, because modal operators live outside RNA.
+running = {}
+
+
+def stylize_problem(context):
+    problem = object_problem(context)
+    if problem is None and context.active_object.as_pointer() in running:
+        problem = "Stylization is already running on this object"
+    return problem
+
+
+def start_session(operator, context):
+    """Validate and set up a run on the active object; report and return None on failure."""
+    obj = context.active_object
+    others = [o for o in context.selected_objects if o != obj]
+    if others:
+        operator.report({'INFO'}, "Stylizing only the active object '%s' (%d other objects selected)"
+                        % (obj.name, len(others)))
+    added = ensure_style_slot(obj.gauss_stylization)
+    try:
+        session = Session(obj)
+    except (SettingsError, NativeModuleError) as exc:
+        if added:  # a failed start changes nothing, settings included
+            obj.gauss_stylization.styles.remove(0)
+        operator.report({'ERROR'}, str(exc))
+        return None
+    if added:
+        operator.report({'INFO'}, "No style slot yet: added a Cube style")
+    return session
+
+
+class OBJECT_OT_gauss_stylize(bpy.types.Operator):
+    """Stylize the active mesh live: one solver step per tick, settings apply at once.
+    Enter/left-click keeps the result, Esc/right-click restores the mesh"""
+    bl_idname = "object.gauss_stylize"
+    bl_label = "Stylize"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    iterations: IntProperty(
+        name="Iterations", default=100, min=0, max=100000,
+        description="Solver steps (scripts: defaults to the object's Script Steps setting)")
+    # Settings a kept live run ended with, so the redo panel repeats that run (JSON, see settings_io).
+    settings_json: StringProperty(options={'HIDDEN', 'SKIP_SAVE'})
+
+    @classmethod
+    def poll(cls, context):
+        return poll_result(cls, stylize_problem(context))
+
+    # -- scripted / background / redo: run synchronously ------------------------
+
+    def execute(self, context):
+        settings = context.active_object.gauss_stylization
+        if self.settings_json:
+            try:
+                settings_io.apply_json(settings, self.settings_json)
+            except (ValueError, KeyError, TypeError) as exc:
+                self.report({'ERROR'}, "Unreadable settings_json (%s): %s" % (type(exc).__name__, exc))
+                return {'CANCELLED'}
+        if not self.properties.is_property_set("iterations"):
+            self.iterations = settings.iterations
+        session = start_session(self, context)
+        if session is None:
+            return {'CANCELLED'}
+        try:
+            if self.iterations:
+                session.step(self.iterations)
+        except SettingsError as exc:
+            session.cancel()
+            self.report({'ERROR'}, str(exc))
+            return {'CANCELLED'}
+        except (ValueError, RuntimeError) as exc:
+            session.cancel()
+            self.report({'ERROR'}, "The solver failed: %s" % exc)
+            return {'CANCELLED'}
+        session.keep()
+        return {'FINISHED'}
+
+    # -- interactive: modal on a timer -------------------------------------------
+
+    def invoke(self, context, event):
+        if context.window is None or bpy.app.background:
+            return self.execute(context)  # no window to run live in
+        session = start_session(self, context)
+        if session is None:
+            return {'CANCELLED'}
+        self._session = session
+        self._area = context.area
+        self._message = "starting"
+        self._tick_ms = []
+        window_manager = context.window_manager
+        self._timer = window_manager.event_timer_add(TICK_SECONDS, window=context.window)
+        window_manager.modal_handler_add(self)
+        running[context.active_object.as_pointer()] = self
+        self._show_status(context)
+        return {'RUNNING_MODAL'}
+
+    def modal(self, context, event):
+        try:
+            return self._handle_event(context, event)
+        except Exception as exc:  # never leave a half-done run or a dangling timer behind
+            self._stop(context, keep=False)
+            self.report({'ERROR'}, "Stylize stopped, mesh restored: %s" % exc)
+            return {'CANCELLED'}
+
+    def _handle_event(self, context, event):
+        if event.type == 'TIMER':
+            if not self._tick(context):
+                return {'CANCELLED'}
+            return {'PASS_THROUGH'}  # other operators may own this timer event
+        if event.value != 'PRESS':
+            return {'PASS_THROUGH'}
+        if event.type == 'ESC' or (event.type == 'RIGHTMOUSE' and _over_viewport(context, event)):
+            self._stop(context, keep=False)
+            return {'CANCELLED'}
+        if event.type in {'RET', 'NUMPAD_ENTER'} or (
+                event.type == 'LEFTMOUSE' and _over_viewport(context, event)):
+            self._stop(context, keep=True)
+            return {'FINISHED'}
+        if event.type == 'TAB' or (event.type == 'Z' and (event.ctrl or event.oskey)):
+            return {'RUNNING_MODAL'}  # no mode switch or undo under a live run
+        return {'PASS_THROUGH'}  # navigation and the sidebar keep working
+
+    def _tick(self, context):
+        """One step with the current settings. False if the run had to stop."""
+        session = self._session
+        if not session.object_alive():
+            self._stop(context, keep=False)
+            self.report({'WARNING'}, "Stylize stopped: the object was deleted or its mesh replaced")
+            return False
+        if context.mode != 'OBJECT':
+            # Edit Mode would overwrite a restore on exit, so keep what is there
+            # and let Reset (which has the start coordinates) take it back.
+            self._stop(context, keep=True)
+            self.report({'WARNING'}, "Stylize stopped: the object left Object Mode. "
+                                     "Use Reset in Object Mode to get the original back")
+            return False
+        start = time.perf_counter()
+        problem = session.sync_settings()
+        if problem is None:
+            session.step()
+            _redraw_viewports(context)
+            self._tick_ms.append((time.perf_counter() - start) * 1000.0)
+        self._message = "paused: " + problem if problem else None
+        self._show_status(context)
+        return True
+
+    def _stop(self, context, keep):
+        session = self._session
+        if keep:
+            session.keep()
+            self.iterations = session.steps
+            self.settings_json = settings_io.to_json(session.obj.gauss_stylization)
+        elif session.object_alive():
+            session.cancel()
+        # (a deleted object has nothing left to restore)
+        context.window_manager.event_timer_remove(self._timer)
+        _forget(self)
+        self._show_status(context, clear=True)
+        _redraw_viewports(context)
+
+    def cancel(self, context):
+        # Blender cancels a modal operator when e.g. its window closes or a file loads.
+        self._stop(context, keep=False)
+
+    def _show_status(self, context, clear=False):
+        text = None if clear else self._status_text()
+        if self._area is not None:
+            try:
+                self._area.header_text_set(text)
+            except ReferenceError:
+                self._area = None
+        if context.workspace is not None:
+            context.workspace.status_text_set(text)
+
+    def _status_text(self):
+        session = self._session
+        text = "Gauss Stylize: step %d" % session.steps
+        if session.step_ms:
+            text += "  |  %.1f ms/step, %.1f ms/tick" % (session.step_ms[-1], self._tick_ms[-1])
+        if self._message:
+            text += "  |  " + self._message
+        return text + "  |  " + HINT
+
+    @property
+    def tick_ms(self):
+        return list(self._tick_ms)
+
+    @property
+    def session(self):
+        return self._session
+
+
+def _forget(operator):
+    for key, value in list(running.items()):
+        if value is operator:
+            del running[key]
+
+
+def _redraw_viewports(context):
+    for area in context.window.screen.areas if context.window else ():
+        if area.type == 'VIEW_3D':
+            area.tag_redraw()
+
+
+def _inside(rect, x, y):
+    return rect.x <= x < rect.x + rect.width and rect.y <= y < rect.y + rect.height
+
+
+def _over_viewport(context, event):
+    """Is the mouse over a 3D viewport's drawing region (not its sidebar, header or toolbar)?
+
+    Clicks elsewhere must reach the UI, so settings can be changed while running.
+    """
+    x, y = event.mouse_x, event.mouse_y
+    for area in context.window.screen.areas:
+        if area.type != 'VIEW_3D' or not _inside(area, x, y):
+            continue
+        # Sidebar and headers overlap the main region, so they are tested first.
+        return not any(region.type != 'WINDOW' and _inside(region, x, y) for region in area.regions)
+    return False
+
+
+def stop_all(context):
+    """Restore and end every live run (used when the add-on is disabled mid-run)."""
+    for operator in list(running.values()):
+        operator._stop(context, keep=False)
+
+
+class OBJECT_OT_gauss_stylize_reset(bpy.types.Operator):
+    """Put back the coordinates the mesh had when its last kept stylization started"""
+    bl_idname = "object.gauss_stylize_reset"
+    bl_label = "Reset"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    @classmethod
+    def poll(cls, context):
+        problem = stylize_problem(context)
+        if problem is None and not rest_store.has_capture(context.active_object.data):
+            problem = "Nothing to reset: this mesh has not been stylized"
+        return poll_result(cls, problem)
+
+    def execute(self, context):
+        try:
+            rest_store.restore(context.active_object)
+        except SettingsError as exc:
+            self.report({'ERROR'}, str(exc))
+            return {'CANCELLED'}
+        return {'FINISHED'}
+
+
+classes = (OBJECT_OT_gauss_stylize, OBJECT_OT_gauss_stylize_reset)

@@ -1,0 +1,53 @@
+"""Style slots -> solver styles, face assignments and pins (pure numpy)."""
+
+import numpy as np
+
+from .properties import CUSTOM
+
+REGION_THRESHOLD = 0.5  # a face is in a group when its vertex weights average above this
+PIN_THRESHOLD = 0.5     # a vertex is pinned when its pin-group weight is above this
+
+
+def rotation_matrix(slot):
+    """The slot's orientation (Euler) as a 3x3 float64 rotation matrix."""
+    return np.array(slot.orientation.to_matrix(), dtype=np.float64)
+
+
+def make_style(gauss_core, slot):
+    """One style slot -> gauss_core.Style (may raise ValueError)."""
+    rotation = rotation_matrix(slot)
+    if slot.preset == CUSTOM:
+        # Custom normals are rotated here, so "orientation" means the same for both kinds.
+        normals = np.array(slot.custom_normal_list(), dtype=np.float64).reshape(-1, 3)
+        return gauss_core.Style(normals=normals @ rotation.T, sigma=slot.sigma, mu=slot.mu)
+    return gauss_core.Style.preset(slot.preset.lower(), sigma=slot.sigma, mu=slot.mu,
+                                   rotation=rotation, axis_contribution=slot.axis_contribution)
+
+
+def make_styles(gauss_core, slots):
+    return [make_style(gauss_core, slot) for slot in slots]
+
+
+def face_styles(arrays, group_weights, slot_groups, uncovered):
+    """Style index of every solver triangle (-1 = unstyled).
+
+    A polygon belongs to a slot's region when the weights of its vertices in
+    the slot's group average above 0.5; later slots win overlaps; a slot
+    without a group covers the whole mesh. Triangles inherit their polygon's style.
+    """
+    default = 0 if uncovered == 'FIRST_SLOT' and slot_groups else -1
+    polygon_style = np.full(arrays.num_polygons, default, np.int32)
+    for index, group in enumerate(slot_groups):
+        if not group:
+            polygon_style[:] = index
+        else:
+            inside = arrays.polygon_average(group_weights[group]) > REGION_THRESHOLD
+            polygon_style[inside] = index
+    return polygon_style[arrays.tri_polygon]
+
+
+def pinned_vertices(group_weights, pin_group):
+    """Indices (int32) of the vertices held in place (possibly empty)."""
+    if not pin_group:
+        return np.empty(0, np.int32)
+    return np.flatnonzero(group_weights[pin_group] > PIN_THRESHOLD).astype(np.int32)

@@ -1,0 +1,162 @@
+"""Sidebar panels (3D view > Sidebar > Gauss) and the style-slot lists."""
+
+import bpy
+
+from . import native, operators
+from .properties import CUSTOM
+
+CATEGORY = "Gauss"
+
+
+class GAUSS_UL_styles(bpy.types.UIList):
+    """Style slots; later slots win where their regions overlap."""
+
+    def draw_item(self, context, layout, data, slot, icon, active_data, active_propname, index):
+        split = layout.split(factor=0.5)
+        split.prop(slot, "name", text="", emboss=False)
+        # The slot's region: its vertex group, or the whole mesh when none is set.
+        if slot.vertex_group:
+            split.label(text=slot.vertex_group, icon='GROUP_VERTEX')
+        else:
+            split.label(text="All", icon='MESH_DATA')
+
+
+class GAUSS_UL_normals(bpy.types.UIList):
+    def draw_item(self, context, layout, data, item, icon, active_data, active_propname, index):
+        layout.prop(item, "vector", text="")
+
+
+def _mesh_object(context):
+    obj = context.active_object
+    return obj if obj is not None and obj.type == 'MESH' else None
+
+
+class _GaussPanel:
+    bl_space_type = 'VIEW_3D'
+    bl_region_type = 'UI'
+    bl_category = CATEGORY
+
+
+class VIEW3D_PT_gauss_stylization(_GaussPanel, bpy.types.Panel):
+    bl_label = "Gauss Stylization"
+
+    def draw(self, context):
+        layout = self.layout
+        try:
+            native.core()
+        except native.NativeModuleError as exc:
+            _wrapped_error(layout, str(exc))
+        obj = _mesh_object(context)
+        if obj is None:
+            layout.label(text="Select a mesh object", icon='INFO')
+            return
+        if len(context.selected_objects) > 1:
+            layout.label(text="Only the active object '%s' is stylized" % obj.name, icon='INFO')
+        if obj.as_pointer() in operators.running:
+            box = layout.box().column(align=True)
+            box.label(text="Stylizing live", icon='TIME')
+            box.label(text="Enter / Left-click: keep")
+            box.label(text="Esc / Right-click: cancel")
+        row = layout.row(align=True)
+        row.scale_y = 1.5
+        row.operator("object.gauss_stylize", icon='PLAY')
+        row.operator("object.gauss_stylize_reset", icon='LOOP_BACK')
+        settings = obj.gauss_stylization
+        col = layout.column()
+        col.use_property_split = True
+        col.use_property_decorate = False
+        col.prop(settings, "output")
+        col.prop_search(settings, "pin_group", obj, "vertex_groups", text="Pin Group")
+
+
+class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
+    bl_label = "Styles"
+    bl_parent_id = "VIEW3D_PT_gauss_stylization"
+
+    @classmethod
+    def poll(cls, context):
+        return _mesh_object(context) is not None
+
+    def draw(self, context):
+        obj = _mesh_object(context)
+        settings = obj.gauss_stylization
+        layout = self.layout
+        row = layout.row()
+        row.template_list("GAUSS_UL_styles", "", settings, "styles", settings, "active_style_index", rows=3)
+        buttons = row.column(align=True)
+        buttons.operator("object.gauss_style_add", icon='ADD', text="")
+        buttons.operator("object.gauss_style_remove", icon='REMOVE', text="")
+        buttons.separator()
+        buttons.operator("object.gauss_style_move", icon='TRIA_UP', text="").direction = 'UP'
+        buttons.operator("object.gauss_style_move", icon='TRIA_DOWN', text="").direction = 'DOWN'
+        if not settings.styles:
+            layout.label(text="Stylize adds a Cube style", icon='INFO')
+            return
+        col = layout.column()
+        col.use_property_split = True
+        col.use_property_decorate = False
+        col.prop(settings, "uncovered", text="Other Faces")
+        if 0 <= settings.active_style_index < len(settings.styles):
+            _draw_slot(col, obj, settings.styles[settings.active_style_index])
+
+
+def _draw_slot(layout, obj, slot):
+    layout.separator()
+    layout.prop(slot, "preset")
+    layout.prop(slot, "sigma")
+    layout.prop(slot, "mu")
+    layout.prop(slot, "orientation", text="Rotation")
+    if slot.preset != CUSTOM:
+        layout.prop(slot, "axis_contribution", text="Axis Weight")
+    layout.prop_search(slot, "vertex_group", obj, "vertex_groups", text="Region")
+    if slot.preset == CUSTOM:
+        _draw_custom_normals(layout, slot)
+
+
+def _draw_custom_normals(layout, slot):
+    layout.label(text="Custom Normals")
+    row = layout.row()
+    row.template_list("GAUSS_UL_normals", "", slot, "custom_normals", slot, "active_normal_index", rows=3)
+    buttons = row.column(align=True)
+    buttons.operator("object.gauss_normal_add", icon='ADD', text="")
+    buttons.operator("object.gauss_normal_remove", icon='REMOVE', text="")
+    layout.operator("object.gauss_normals_from_faces", icon='FACESEL')
+    if not slot.custom_normals:
+        layout.label(text="Add at least one normal", icon='ERROR')
+
+
+class VIEW3D_PT_gauss_solver(_GaussPanel, bpy.types.Panel):
+    bl_label = "Solver"
+    bl_parent_id = "VIEW3D_PT_gauss_stylization"
+    bl_options = {'DEFAULT_CLOSED'}
+
+    @classmethod
+    def poll(cls, context):
+        return _mesh_object(context) is not None
+
+    def draw(self, context):
+        settings = _mesh_object(context).gauss_stylization
+        col = self.layout.column()
+        col.use_property_split = True
+        col.use_property_decorate = False
+        col.prop(settings, "lam")
+        col.prop(settings, "admm_iterations")
+        col.prop(settings, "iterations")
+
+
+def _wrapped_error(layout, text, width=40):
+    col = layout.column(align=True)
+    words, line = text.split(), ""
+    lines = []
+    for word in words:
+        if line and len(line) + len(word) > width:
+            lines.append(line)
+            line = ""
+        line = (line + " " + word).strip()
+    lines.append(line)
+    for number, part in enumerate(lines):
+        col.label(text=part, icon='ERROR' if number == 0 else 'BLANK1')
+
+
+classes = (GAUSS_UL_styles, GAUSS_UL_normals,
+           VIEW3D_PT_gauss_stylization, VIEW3D_PT_gauss_styles, VIEW3D_PT_gauss_solver)

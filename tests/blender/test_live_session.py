@@ -1,0 +1,134 @@
+"""The live run behind the modal operator, driven step by step without a window.
+
+The windowed test (run_windowed.sh) drives the real modal operator; these
+tests pin down what each tick does with settings changed in the panel.
+"""
+
+import bpy
+import numpy as np
+
+import helpers
+
+
+def _session(addon, obj):
+    addon.session.ensure_style_slot(obj.gauss_stylization)
+    return addon.session.Session(obj)
+
+
+def test_style_changes_apply_without_refactoring(addon):
+    obj = helpers.suzanne(levels=1)
+    run = _session(addon, obj)
+    run.step()
+    factorizations = run.solver.factorization_count
+    slot = obj.gauss_stylization.styles[0]
+    slot.sigma, slot.mu, slot.orientation = 9.0, 2.0, (0.3, 0.0, 0.0)
+    slot.preset = 'OCTAHEDRON'
+    assert run.sync_settings() is None
+    run.step()
+    assert run.solver.factorization_count == factorizations
+    obj.gauss_stylization.lam = 7.0
+    obj.gauss_stylization.admm_iterations = 2
+    assert run.sync_settings() is None
+    assert (run.solver.lam, run.solver.admm_iterations) == (7.0, 2)
+    run.cancel()
+
+
+def test_pin_group_change_applies_at_next_step(addon):
+    obj = helpers.suzanne(levels=1)
+    start = helpers.coords(obj)
+    pinned = np.flatnonzero(start[:, 2] > 0.3)
+    helpers.add_group(obj, "Pins", pinned)
+    run = _session(addon, obj)
+    run.step(5)
+    assert np.abs(helpers.coords(obj)[pinned] - start[pinned]).max() > 1e-3
+    factorizations = run.solver.factorization_count
+    obj.gauss_stylization.pin_group = "Pins"
+    assert run.sync_settings() is None
+    assert run.solver.factorization_count > factorizations
+    run.cancel()
+
+
+def test_invalid_change_pauses_instead_of_failing(addon):
+    obj = helpers.suzanne(levels=1)
+    run = _session(addon, obj)
+    obj.gauss_stylization.styles[0].preset = 'CUSTOM'
+    assert "no normals" in run.sync_settings()
+    obj.gauss_stylization.styles[0].set_custom_normals([(0, 0, 1)])
+    assert run.sync_settings() is None
+    run.cancel()
+
+
+def test_new_region_assignment_applies_at_next_step(addon):
+    obj = helpers.suzanne(levels=1)
+    start = helpers.coords(obj)
+    helpers.add_group(obj, "Top", np.flatnonzero(start[:, 2] > 0))
+    run = _session(addon, obj)
+    obj.gauss_stylization.uncovered = 'UNSTYLED'
+    slot = obj.gauss_stylization.styles[0]
+    slot.vertex_group = "Top"
+    assert run.sync_settings() is None
+    helpers.add_slot(obj, 'CUSTOM', "Top").set_custom_normals([(0, 0, 1)])
+    assert run.sync_settings() is None
+    run.step(3)
+    run.cancel()
+
+
+def test_cancel_restores_mesh_bit_exactly(addon):
+    obj = helpers.suzanne(levels=1)
+    start = helpers.coords(obj)
+    run = _session(addon, obj)
+    run.step(10)
+    assert not np.array_equal(helpers.coords(obj), start)
+    run.cancel()
+    assert np.array_equal(helpers.coords(obj), start)
+
+
+def test_cancel_removes_the_shape_keys_it_created(addon):
+    obj = helpers.suzanne(levels=1)
+    start = helpers.coords(obj)
+    obj.gauss_stylization.output = 'SHAPE_KEY'
+    run = _session(addon, obj)
+    run.step(10)
+    assert obj.data.shape_keys is not None
+    run.cancel()
+    assert obj.data.shape_keys is None
+    assert np.array_equal(helpers.coords(obj), start)
+
+
+def test_cancel_restores_an_existing_stylized_key(addon):
+    obj = helpers.suzanne(levels=1)
+    obj.gauss_stylization.output = 'SHAPE_KEY'
+    helpers.stylize(5)
+    key = obj.data.shape_keys.key_blocks["Gauss Stylized"]
+    key.value = 0.3
+    before = helpers.key_coords(key)
+    run = _session(addon, obj)
+    run.step(10)
+    run.cancel()
+    key = obj.data.shape_keys.key_blocks["Gauss Stylized"]
+    assert np.array_equal(helpers.key_coords(key), before) and key.value == np.float32(0.3)
+
+
+def test_redo_repeats_a_live_run_with_the_settings_it_ended_with(addon):
+    # The redo panel undoes to the state before the run (older settings) and
+    # calls execute() with the settings the live run ended with.
+    obj = helpers.suzanne(levels=1)
+    slot = helpers.add_slot(obj, 'CUBE', sigma=9.0)
+    ended_with = addon.settings_io.to_json(obj.gauss_stylization)
+    slot.sigma, slot.preset = 4.0, 'OCTAHEDRON'
+    assert bpy.ops.object.gauss_stylize(iterations=3, settings_json=ended_with) == {'FINISHED'}
+    slot = obj.gauss_stylization.styles[0]
+    assert (slot.sigma, slot.preset) == (9.0, 'CUBE')
+
+
+def test_cancel_restores_base_key_and_vertices_of_a_keyed_mesh(addon):
+    obj = helpers.suzanne(levels=1)
+    basis = obj.shape_key_add(name="Basis", from_mix=False)
+    obj.shape_key_add(name="Other", from_mix=False)
+    start, basis_start = helpers.coords(obj), helpers.key_coords(basis)
+    run = _session(addon, obj)
+    run.step(10)
+    assert not np.array_equal(helpers.evaluated_coords(obj), start)
+    run.cancel()
+    assert np.array_equal(helpers.coords(obj), start)
+    assert np.array_equal(helpers.key_coords(obj.data.shape_keys.key_blocks["Basis"]), basis_start)
