@@ -68,11 +68,34 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p) : sigma_(p.sigma), 
     normal_weights_ = solve_unit_weights(A, "preferred normals");
     if (has_rings())
       for (double& w : normal_weights_) w *= p.axis_contribution;
+    // Terms in evaluation order: antipodal pairs (n, -n) first, each pair at an even position
+    // with its second term marked, so that its exponential follows from the first's:
+    // exp(s(-x.n - 1)) = exp(-2s) / exp(s(x.n - 1)). Then the unpaired normals.
+    std::vector<int> order, singles;  // codes: k, or ~k for "second of a pair"
+    std::vector<char> used(K, 0);
     for (int k = 0; k < K; ++k) {
+      if (used[k]) continue;
+      used[k] = 1;
+      int partner = -1;
+      for (int j = k + 1; j < K && partner < 0; ++j)
+        if (!used[j] && (normals_[k] + normals_[j]).norm() < 1e-12) partner = j;
+      if (partner < 0) {
+        singles.push_back(k);
+      } else {
+        used[partner] = 1;
+        order.push_back(k);
+        order.push_back(~partner);
+      }
+    }
+    order.insert(order.end(), singles.begin(), singles.end());
+    for (int code : order) {
+      const int k = code < 0 ? ~code : code;
       const Eigen::Vector3d& n = normals_[k];
       terms_.push_back({n.x(), n.y(), n.z(), n.x() * n.x(), n.x() * n.y(), n.x() * n.z(), n.y() * n.y(),
                         n.y() * n.z(), n.z() * n.z(), normal_weights_[k]});
+      second_of_pair_.push_back(code < 0);
     }
+    exp_minus_2sigma_ = std::exp(-2.0 * sigma_);
   }
   const int R = static_cast<int>(offsets_.size());
   if (R > 0) {
@@ -99,7 +122,7 @@ void PreferenceFunction::evaluate(const Eigen::Vector3d& x, double& g, Eigen::Ve
   const double s = sigma_;
   // Discrete normals in chunks: arguments, exponentials, then the accumulation of g, its gradient
   // and the upper triangle of its Hessian from the precomputed n n^T.
-  constexpr int kChunk = 32;
+  constexpr int kChunk = 32;  // even: pairs sit at even positions, so no chunk splits one
   double e[kChunk];
   double v = 0, g0 = 0, g1 = 0, g2 = 0, h00 = 0, h01 = 0, h02 = 0, h11 = 0, h12 = 0, h22 = 0;
   const int K = static_cast<int>(terms_.size());
@@ -108,7 +131,13 @@ void PreferenceFunction::evaluate(const Eigen::Vector3d& x, double& g, Eigen::Ve
     const std::array<double, 10>* t = terms_.data() + begin;
     for (int k = 0; k < count; ++k)
       e[k] = s * (x.x() * t[k][0] + x.y() * t[k][1] + x.z() * t[k][2] - 1.0);
-    for (int k = 0; k < count; ++k) e[k] = t[k][9] * std::exp(e[k]);
+    const char* second = second_of_pair_.data() + begin;
+    for (int k = 0; k < count; ++k) {
+      // e[k-1] still holds the unweighted exponential of the pair's first term. Below 1e-150 the
+      // division would lose range, so such rare cases take the exponential directly.
+      e[k] = (second[k] && e[k - 1] > 1e-150) ? exp_minus_2sigma_ / e[k - 1] : std::exp(e[k]);
+    }
+    for (int k = 0; k < count; ++k) e[k] *= t[k][9];
     for (int k = 0; k < count; ++k) {
       const double c = e[k];
       v += c;

@@ -49,6 +49,8 @@ class PreferenceFunction {
   std::vector<double> normal_weights_;  // w'_k, axis contribution already folded in
   // Per normal: n (3), the upper triangle of n n^T (6) and w'_k, contiguous for the hot loop.
   std::vector<std::array<double, 10>> terms_;
+  std::vector<char> second_of_pair_;  // per term: the antipode of the term before it
+  double exp_minus_2sigma_ = 0;
   Eigen::Vector3d axis_;
   std::vector<double> offsets_;
   std::vector<double> ring_weights_;    // w'_r
