@@ -32,9 +32,11 @@ def register():
     for cls in classes:
         bpy.utils.register_class(cls)
     properties.register_pointer()
+    operators.register_handlers()
 
 
 def unregister():
+    operators.unregister_handlers()
     operators.stop_all(bpy.context)
     properties.unregister_pointer()
     for cls in reversed(classes):

@@ -100,7 +100,8 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         if session is None:
             return {'CANCELLED'}
         self._session = session
-        self._area = context.area
+        # The area's address only, never a Python reference to it: see _existing_area.
+        self._area_pointer = context.area.as_pointer() if context.area else None
         self._message = "starting"
         self._tick_ms = []
         window_manager = context.window_manager
@@ -111,6 +112,10 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         return {'RUNNING_MODAL'}
 
     def modal(self, context, event):
+        if self._timer is None:
+            # Already ended outside an event (undo handler, add-on disabled); the
+            # handler is still there until it returns, and the event is not ours.
+            return {'CANCELLED', 'PASS_THROUGH'}
         try:
             return self._handle_event(context, event)
         except Exception as exc:  # never leave a half-done run or a dangling timer behind
@@ -130,6 +135,9 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             return {'CANCELLED'}
         if event.type in {'RET', 'NUMPAD_ENTER'} or (
                 event.type == 'LEFTMOUSE' and _over_viewport(context, event)):
+            if not self._session.object_alive():  # deleted since the last tick: nothing to keep
+                self._stop_object_gone(context)
+                return {'CANCELLED'}
             self._stop(context, keep=True)
             return {'FINISHED'}
         if event.type == 'TAB' or (event.type == 'Z' and (event.ctrl or event.oskey)):
@@ -140,8 +148,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         """One step with the current settings. False if the run had to stop."""
         session = self._session
         if not session.object_alive():
-            self._stop(context, keep=False)
-            self.report({'WARNING'}, "Stylize stopped: the object was deleted or its mesh replaced")
+            self._stop_object_gone(context)
             return False
         if context.mode != 'OBJECT':
             # Edit Mode would overwrite a restore on exit, so keep what is there
@@ -161,18 +168,31 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         return True
 
     def _stop(self, context, keep):
+        """End the run: keep the result (callers check the object is alive) or restore.
+
+        Runs once: Blender may still call cancel() after an undo or disabling the
+        add-on ended the run, and removing a removed timer reads freed memory.
+        """
+        if self._timer is None:
+            return
         session = self._session
-        if keep:
+        if keep:  # should this raise, the run is still on and modal() cancels it
             session.keep()
             self.iterations = session.steps
             self.settings_json = settings_io.to_json(session.obj.gauss_stylization)
-        elif session.object_alive():
-            session.cancel()
-        # (a deleted object has nothing left to restore)
-        context.window_manager.event_timer_remove(self._timer)
-        _forget(self)
-        self._show_status(context, clear=True)
-        _redraw_viewports(context)
+        try:
+            if not keep:
+                session.cancel()  # restores whatever still exists, never freed data
+        finally:  # even if restoring failed: leave no timer and no stale entry behind
+            context.window_manager.event_timer_remove(self._timer)
+            self._timer = None
+            _forget(self)
+            self._show_status(context, clear=True)
+            _redraw_viewports(context)
+
+    def _stop_object_gone(self, context):
+        self._stop(context, keep=False)
+        self.report({'WARNING'}, "Stylize stopped: the object was deleted or its mesh replaced")
 
     def cancel(self, context):
         # Blender cancels a modal operator when e.g. its window closes or a file loads.
@@ -180,11 +200,9 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
 
     def _show_status(self, context, clear=False):
         text = None if clear else self._status_text()
-        if self._area is not None:
-            try:
-                self._area.header_text_set(text)
-            except ReferenceError:
-                self._area = None
+        area = _existing_area(self._area_pointer)
+        if area is not None:
+            area.header_text_set(text)
         if context.workspace is not None:
             context.workspace.status_text_set(text)
 
@@ -212,6 +230,22 @@ def _forget(operator):
             del running[key]
 
 
+def _existing_area(pointer):
+    """The screen area at address ``pointer`` if it still exists, else None.
+
+    Areas are not IDs: when one is freed (areas joined or closed, a file loaded)
+    Python is not told, and a kept reference would write into freed memory. So
+    the area is looked for among the live ones each time (a few dozen at most).
+    """
+    if pointer is None:
+        return None
+    for screen in bpy.data.screens:
+        for area in screen.areas:
+            if area.as_pointer() == pointer:
+                return area
+    return None
+
+
 def _redraw_viewports(context):
     for area in context.window.screen.areas if context.window else ():
         if area.type == 'VIEW_3D':
@@ -236,10 +270,39 @@ def _over_viewport(context, event):
     return False
 
 
-def stop_all(context):
-    """Restore and end every live run (used when the add-on is disabled mid-run)."""
+def stop_all(context, report=None):
+    """Restore and end every live run (add-on disabled, undo/redo mid-run)."""
     for operator in list(running.values()):
         operator._stop(context, keep=False)
+        if report:
+            operator.report({'WARNING'}, report)
+
+
+@bpy.app.handlers.persistent
+def _end_runs_before_undo(*_args):
+    # Ctrl+Z is swallowed during a run, but the Edit menu (or F9 redo) still
+    # reaches undo. Memory undo keeps a mesh it thinks unchanged as it is in
+    # memory, so the half-done result would stay, in no undo step, and the run
+    # would stop without restoring. Restoring first makes memory match the undo
+    # step again.
+    stop_all(bpy.context, report="Stylize cancelled by undo/redo; the mesh was restored first")
+
+
+UNDO_HANDLER_LISTS = ("undo_pre", "redo_pre")
+
+
+def register_handlers():
+    for name in UNDO_HANDLER_LISTS:
+        handlers = getattr(bpy.app.handlers, name)
+        if _end_runs_before_undo not in handlers:
+            handlers.append(_end_runs_before_undo)
+
+
+def unregister_handlers():
+    for name in UNDO_HANDLER_LISTS:
+        handlers = getattr(bpy.app.handlers, name)
+        if _end_runs_before_undo in handlers:
+            handlers.remove(_end_runs_before_undo)
 
 
 class OBJECT_OT_gauss_stylize_reset(bpy.types.Operator):

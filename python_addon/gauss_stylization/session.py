@@ -131,11 +131,23 @@ class Session:
         rest_store.capture(self.mesh, self.arrays.coords, self.target.kind)
 
     def cancel(self):
-        """Put back exactly what was there before the run."""
-        self.target.restore()
+        """Put back exactly what was there before the run, as far as it still exists.
+
+        The mesh is restored even when its object was deleted during the run:
+        another object may share it, and undo reuses the mesh as it is in memory.
+        A freed mesh, or one whose vertex count changed, is left alone.
+        """
+        if self.mesh_alive():
+            self.target.restore()
+
+    def mesh_alive(self):
+        try:
+            return len(self.mesh.vertices) == self.arrays.num_vertices
+        except ReferenceError:  # the mesh was freed (deleted, undo, file load)
+            return False
 
     def object_alive(self):
         try:
-            return self.obj.data == self.mesh and len(self.mesh.vertices) == self.arrays.num_vertices
+            return self.obj.data == self.mesh and self.mesh_alive()
         except ReferenceError:  # the object or mesh was deleted while running
             return False

@@ -1,5 +1,6 @@
 """Bad input: an error report in plain words, and the mesh left exactly as it was."""
 
+import json
 import math
 
 import bmesh
@@ -157,3 +158,115 @@ def test_solver_producing_nan_is_reported_and_undone(monkeypatch, addon):
     monkeypatch.setattr(gauss_core, "Solver", Diverging)
     _assert_refused(obj, "invalid positions")
     assert len(obj.gauss_stylization.styles) == 1
+
+
+def test_no_active_object():
+    obj = helpers.suzanne(levels=0)
+    before = helpers.coords(obj)
+    bpy.context.view_layer.objects.active = None
+    assert not bpy.ops.object.gauss_stylize.poll()
+    for operator in (bpy.ops.object.gauss_stylize, bpy.ops.object.gauss_stylize_reset):
+        with pytest.raises(RuntimeError, match="Select a mesh object first"):
+            operator()
+    assert np.array_equal(helpers.coords(obj), before) and len(obj.gauss_stylization.styles) == 0
+
+
+def test_vertex_group_deleted_while_its_name_is_stored():
+    obj = _suzanne_with_slot(preset='CUBE', group="Ears")
+    helpers.add_group(obj, "Ears", range(50))
+    helpers.add_group(obj, "Nails", range(5))
+    obj.gauss_stylization.pin_group = "Nails"
+    obj.vertex_groups.remove(obj.vertex_groups["Ears"])
+    _assert_refused(obj, "Style 'Cube': there is no vertex group 'Ears'")
+    obj.gauss_stylization.styles[0].vertex_group = ""
+    obj.vertex_groups.remove(obj.vertex_groups["Nails"])
+    _assert_refused(obj, "Pin Group: there is no vertex group 'Nails'")
+
+
+# Non-finite and huge values set from Python. Blender clamps +-inf and huge
+# values of the ranged properties into their documented range (and vectors to
+# +-FLT_MAX) but lets NaN through. Expected: the error naming the setting, or,
+# for what was clamped to a usable value, a normal run with a finite result.
+FLOAT_CASES = [
+    ("settings", "lam", math.nan, "Lambda"),
+    ("settings", "lam", math.inf, None),
+    ("settings", "lam", -math.inf, None),
+    ("slot", "sigma", math.nan, "Sigma"),
+    ("slot", "sigma", 1e30, None),
+    ("slot", "sigma", -1e30, "Sigma"),  # clamped to 0, which is no sharpness
+    ("slot", "mu", math.nan, "Mu"),
+    ("slot", "mu", math.inf, None),
+    ("slot", "mu", -math.inf, None),
+    ("slot", "axis_contribution", math.nan, "Axis Contribution"),
+    ("slot", "axis_contribution", math.inf, None),
+    ("slot", "axis_contribution", -1e30, None),
+    ("slot", "orientation", math.nan, "Orientation"),
+    ("slot", "orientation", math.inf, None),  # stored as FLT_MAX: still some rotation
+    ("normal", "vector", math.nan, "custom normal 1 is not a finite vector"),
+    ("normal", "vector", math.inf, None),
+    ("normal", "vector", -1e30, None),
+    ("normal", "vector", 1e-30, "custom normal 1 has zero length"),
+]
+
+
+@pytest.mark.parametrize("owner, name, value, error", FLOAT_CASES,
+                         ids=["%s-%s-%g" % case[:3] for case in FLOAT_CASES])
+def test_extreme_float_setting_from_python(owner, name, value, error):
+    obj = helpers.suzanne(levels=0)
+    slot = helpers.add_slot(obj, 'CUSTOM' if owner == "normal" else 'CUBE')
+    if owner == "normal":
+        slot.set_custom_normals([(0, 0, 1)])
+    target = {"settings": obj.gauss_stylization, "slot": slot,
+              "normal": slot.custom_normals[0] if owner == "normal" else None}[owner]
+    size = target.bl_rna.properties[name].array_length
+    setattr(target, name, (value,) * size if size else value)
+    stored = list(getattr(target, name)) if size else [getattr(target, name)]
+    if error is not None:
+        _assert_refused(obj, error)
+        return
+    prop = target.bl_rna.properties[name]
+    assert all(prop.hard_min <= v <= prop.hard_max for v in stored)  # clamped, so not NaN either
+    assert bpy.ops.object.gauss_stylize(iterations=5) == {'FINISHED'}
+    assert np.isfinite(helpers.coords(obj)).all()
+
+
+@pytest.mark.parametrize("name, low, high", [("iterations", 0, 100000), ("admm_iterations", 1, 100)])
+def test_extreme_int_setting_from_python(name, low, high):
+    settings = helpers.suzanne(levels=0).gauss_stylization
+    before = getattr(settings, name)
+    for bad, error in ((math.nan, TypeError), (math.inf, TypeError), (10 ** 10, ValueError),
+                       (-2 ** 31 - 1, ValueError)):
+        with pytest.raises(error):
+            setattr(settings, name, bad)
+        assert getattr(settings, name) == before
+    setattr(settings, name, -10 ** 9)
+    assert getattr(settings, name) == low
+    setattr(settings, name, 10 ** 9)
+    assert getattr(settings, name) == high
+
+
+def test_most_admm_iterations_run():
+    obj = _suzanne_with_slot(preset='CUBE')
+    obj.gauss_stylization.admm_iterations = 10 ** 9  # clamped to 100
+    assert helpers.stylize(3) == {'FINISHED'} and np.isfinite(helpers.coords(obj)).all()
+
+
+def test_extreme_operator_iterations_from_python():
+    obj = _suzanne_with_slot(preset='CUBE')
+    before = helpers.coords(obj)
+    for bad, error in ((math.nan, TypeError), (10 ** 10, ValueError)):
+        with pytest.raises(error):
+            bpy.ops.object.gauss_stylize(iterations=bad)
+        assert np.array_equal(helpers.coords(obj), before)
+    assert bpy.ops.object.gauss_stylize(iterations=-5) == {'FINISHED'}  # clamped to 0 steps
+    assert np.array_equal(helpers.coords(obj), before)
+
+
+def test_nan_in_settings_json(addon):
+    obj = _suzanne_with_slot(preset='CUBE')
+    before = helpers.coords(obj)
+    settings = json.loads(addon.settings_io.to_json(obj.gauss_stylization))
+    settings["styles"][0]["mu"] = math.nan
+    with pytest.raises(RuntimeError, match="Mu must be a number"):
+        bpy.ops.object.gauss_stylize(iterations=5, settings_json=json.dumps(settings))
+    assert np.array_equal(helpers.coords(obj), before)

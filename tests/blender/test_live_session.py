@@ -4,8 +4,11 @@ The windowed test (run_windowed.sh) drives the real modal operator; these
 tests pin down what each tick does with settings changed in the panel.
 """
 
+import math
+
 import bpy
 import numpy as np
+import pytest
 
 import helpers
 
@@ -132,3 +135,118 @@ def test_cancel_restores_base_key_and_vertices_of_a_keyed_mesh(addon):
     run.cancel()
     assert np.array_equal(helpers.coords(obj), start)
     assert np.array_equal(helpers.key_coords(obj.data.shape_keys.key_blocks["Basis"]), basis_start)
+
+
+NAN_MID_RUN = [("settings", "lam", "Lambda"), ("slot", "sigma", "Sigma"), ("slot", "mu", "Mu"),
+               ("slot", "axis_contribution", "Axis Contribution"), ("slot", "orientation", "Orientation"),
+               ("normal", "vector", "custom normal 1")]
+
+
+@pytest.mark.parametrize("owner, name, label", NAN_MID_RUN, ids=[case[1] for case in NAN_MID_RUN])
+def test_nan_typed_in_mid_run_pauses_and_a_valid_value_resumes(addon, owner, name, label):
+    obj = helpers.suzanne(levels=1)
+    start = helpers.coords(obj)
+    slot = helpers.add_slot(obj, 'CUSTOM' if owner == "normal" else 'CUBE')
+    if owner == "normal":
+        slot.set_custom_normals([(0, 0, 1), (1, 0, 0)])
+    target = {"settings": obj.gauss_stylization, "slot": slot,
+              "normal": slot.custom_normals[0] if owner == "normal" else None}[owner]
+    run = _session(addon, obj)
+    run.step(3)
+    applied = run.applied
+    good = getattr(target, name)
+    good = tuple(good) if target.bl_rna.properties[name].array_length else good
+    size = target.bl_rna.properties[name].array_length
+    setattr(target, name, (math.nan,) * size if size else math.nan)
+    problem = run.sync_settings()
+    assert problem is not None and label in problem
+    assert run.applied == applied  # nothing reached the solver
+    setattr(target, name, good)
+    assert run.sync_settings() is None
+    run.step()
+    assert np.isfinite(helpers.coords(obj)).all()
+    run.cancel()
+    assert np.array_equal(helpers.coords(obj), start)
+
+
+def test_vertex_group_deleted_mid_run_keeps_the_weights_read_at_start(addon):
+    obj = helpers.suzanne(levels=1)
+    start = helpers.coords(obj)
+    helpers.add_group(obj, "Top", np.flatnonzero(start[:, 2] > 0))
+    helpers.add_slot(obj, 'CUBE', "Top")
+    run = _session(addon, obj)
+    run.step(2)
+    obj.vertex_groups.remove(obj.vertex_groups["Top"])
+    assert run.sync_settings() is None
+    run.step(2)
+    run.cancel()
+    assert np.array_equal(helpers.coords(obj), start)
+
+
+# The panel stays usable during a live run, so shape keys or the whole object
+# can be deleted between two ticks. Writing into a deleted shape key crashed Blender.
+
+def test_shape_keys_deleted_mid_run_with_shape_key_output(addon):
+    obj = helpers.suzanne(levels=1)
+    start = helpers.coords(obj)
+    obj.gauss_stylization.output = 'SHAPE_KEY'
+    run = _session(addon, obj)
+    run.step(3)
+    obj.shape_key_clear()
+    with pytest.raises(addon.validation.SettingsError, match="'Gauss Stylized' was deleted"):
+        run.step()
+    run.cancel()
+    assert obj.data.shape_keys is None and np.array_equal(helpers.coords(obj), start)
+
+
+def test_shape_keys_deleted_mid_run_with_mesh_output(addon):
+    obj = helpers.suzanne(levels=1)
+    obj.shape_key_add(name="Basis", from_mix=False)
+    start = helpers.coords(obj)
+    run = _session(addon, obj)
+    run.step(3)
+    obj.shape_key_clear()
+    run.step(3)  # the mesh itself is still there to write to
+    assert not np.array_equal(helpers.coords(obj), start)
+    run.cancel()
+    assert np.array_equal(helpers.coords(obj), start)
+
+
+def test_basis_added_mid_run_is_restored_too(addon):
+    obj = helpers.suzanne(levels=1)
+    start = helpers.coords(obj)
+    run = _session(addon, obj)
+    run.step(3)
+    obj.shape_key_add(name="Basis", from_mix=False)  # made from the stylized shape
+    run.step(3)
+    run.cancel()
+    assert np.array_equal(helpers.coords(obj), start)
+    assert np.array_equal(helpers.key_coords(obj.data.shape_keys.key_blocks["Basis"]), start)
+
+
+@pytest.mark.parametrize("output", ['MESH', 'SHAPE_KEY'])
+def test_object_deleted_mid_run_its_mesh_is_still_restored(addon, output):
+    # Another object may share the mesh, and undo reuses the mesh as it is in memory.
+    obj = helpers.suzanne(levels=1)
+    mesh, start = obj.data, helpers.coords(obj)
+    obj.gauss_stylization.output = output
+    objects = len(bpy.data.objects)
+    run = _session(addon, obj)
+    run.step(3)
+    bpy.data.objects.remove(obj)
+    assert not run.object_alive()
+    run.cancel()
+    out = np.empty_like(start)
+    mesh.vertices.foreach_get("co", out.reshape(-1))
+    assert np.array_equal(out, start) and mesh.shape_keys is None
+    assert len(bpy.data.objects) == objects - 1  # the object borrowed to remove keys is gone
+
+
+def test_mesh_freed_mid_run_cancel_touches_nothing(addon):
+    obj = helpers.suzanne(levels=1)
+    obj.gauss_stylization.output = 'SHAPE_KEY'
+    run = _session(addon, obj)
+    run.step(3)
+    bpy.data.meshes.remove(obj.data)  # removes the object too
+    assert not run.object_alive()
+    run.cancel()  # no ReferenceError, no access to freed data

@@ -13,6 +13,7 @@ and quits Blender itself.
 import os
 import statistics
 import sys
+import tempfile
 import time
 import traceback
 
@@ -92,9 +93,75 @@ def press(event_type, x, y, **modifiers):
 
 
 def coords(obj):
-    out = np.empty((len(obj.data.vertices), 3), np.float32)
-    obj.data.vertices.foreach_get("co", out.reshape(-1))
+    return mesh_coords(obj.data)
+
+
+def mesh_coords(mesh):
+    out = np.empty((len(mesh.vertices), 3), np.float32)
+    mesh.vertices.foreach_get("co", out.reshape(-1))
     return out
+
+
+def key_coords(key):
+    out = np.empty((len(key.data), 3), np.float32)
+    key.data.foreach_get("co", out.reshape(-1))
+    return out
+
+
+def shape(obj):
+    """All a cancel must put back: vertices, every shape key (name, coordinates, value), active key."""
+    keys = obj.data.shape_keys
+    blocks = [(k.name, key_coords(k), k.value) for k in keys.key_blocks] if keys else []
+    return coords(obj), blocks, obj.active_shape_key_index
+
+
+def same_shape(a, b):
+    return (np.array_equal(a[0], b[0]) and a[2] == b[2] and len(a[1]) == len(b[1])
+            and all(na == nb and np.array_equal(ca, cb) and va == vb
+                    for (na, ca, va), (nb, cb, vb) in zip(a[1], b[1])))
+
+
+def activate(name):
+    obj = bpy.data.objects[name]
+    for other in bpy.context.view_layer.objects:
+        other.select_set(False)
+    obj.select_set(True)
+    bpy.context.view_layer.objects.active = obj
+    return obj
+
+
+def push_undo(message):
+    with override():
+        bpy.ops.ed.undo_push(message=message)
+
+
+def set_marker(value):
+    """An undo step whose only change (scene["gauss_marker"]) shows where an undo went."""
+    bpy.context.scene["gauss_marker"] = value
+    push_undo("Marker %d" % value)
+
+
+def marker():
+    return bpy.context.scene.get("gauss_marker")
+
+
+reports_read = [0]
+
+
+def new_reports():
+    """Reports Blender showed the artist since the last call, as the Info editor lists them."""
+    area = next(a for a in window().screen.areas if a.type == 'DOPESHEET_EDITOR')  # the timeline
+    ui_type = area.ui_type
+    area.type = 'INFO'
+    region = next(r for r in area.regions if r.type == 'WINDOW')
+    with bpy.context.temp_override(window=window(), area=area, region=region):
+        bpy.ops.info.select_all(action='SELECT')
+        bpy.ops.info.report_copy()
+    area.ui_type = ui_type
+    lines = bpy.context.window_manager.clipboard.splitlines()
+    fresh = lines[reports_read[0]:]
+    reports_read[0] = len(lines)
+    return "\n".join(fresh)
 
 
 def live_operator():
@@ -227,6 +294,236 @@ def mouse_buttons(name):
           live_operator() is None and not np.array_equal(coords(bpy.data.objects[name]), original))
 
 
+def undo_keys_are_swallowed(name):
+    """Ctrl+Z / Ctrl+Shift+Z during a run do nothing; Esc then restores, Enter then undoes in one step."""
+    set_marker(1)
+    set_marker(2)
+    original = coords(bpy.data.objects[name])
+    for ending in ('ESC', 'RET'):
+        start_live_run()
+        yield from wait_steps(3)
+        press('Z', *viewport_point(), ctrl=True)
+        press('Z', *viewport_point(), ctrl=True, shift=True)
+        op = live_operator()
+        steps = op.session.steps if op else 0
+        yield from wait_steps(steps + 3)
+        check("Ctrl+Z and Ctrl+Shift+Z during a run leave it running (then %s)" % ending,
+              live_operator() is not None and live_operator().session.steps >= steps + 3)
+        check("Ctrl+Z and Ctrl+Shift+Z during a run undo/redo nothing (then %s)" % ending,
+              marker() == 2, "marker=%s" % marker())
+        changed = not np.array_equal(coords(bpy.data.objects[name]), original)
+        press(ending, *viewport_point())
+        yield from wait_stopped()
+        if ending == 'ESC':
+            check("Esc after Ctrl+Z/Ctrl+Shift+Z restores the mesh bit-exactly",
+                  live_operator() is None and changed
+                  and np.array_equal(coords(bpy.data.objects[name]), original))
+    kept = coords(bpy.data.objects[name])
+    check("Enter after Ctrl+Z/Ctrl+Shift+Z keeps the result",
+          live_operator() is None and not np.array_equal(kept, original))
+    press('Z', *viewport_point(), ctrl=True)
+    yield 0.5
+    check("one Ctrl+Z after Enter restores the original bit-exactly",
+          marker() == 2 and np.array_equal(coords(bpy.data.objects[name]), original))
+    press('Z', *viewport_point(), ctrl=True, shift=True)
+    yield 0.5
+    check("Ctrl+Shift+Z then brings the kept result back",
+          np.array_equal(coords(bpy.data.objects[name]), kept))
+
+
+def edit_menu_undo_mid_run(name):
+    """Edit > Undo is a click, which a run lets through: it cancels the run, restoring first."""
+    set_marker(3)
+    set_marker(4)
+    new_reports()
+    original = coords(bpy.data.objects[name])
+    start_live_run()
+    yield from wait_steps(5)
+    changed = not np.array_equal(coords(bpy.data.objects[name]), original)
+    with override():
+        bpy.ops.ed.undo()  # what the Edit > Undo menu item runs
+    window().event_simulate(type='MOUSEMOVE', value='NOTHING', x=10, y=10)
+    yield 0.5
+    check("Edit > Undo during a run ends the run and goes one step back",
+          live_operator() is None and marker() == 3, "marker=%s" % marker())
+    check("Edit > Undo during a run leaves the mesh bit-exactly as before the run",
+          changed and np.array_equal(coords(bpy.data.objects[name]), original))
+    text = new_reports()
+    check("Edit > Undo during a run is reported", "cancelled by undo" in text, repr(text[-200:]))
+    with override():
+        bpy.ops.ed.redo()
+    yield 0.3
+    check("Edit > Redo afterwards returns to the state before the run",
+          marker() == 4 and np.array_equal(coords(bpy.data.objects[name]), original))
+
+
+def make_keyed_copy(name):
+    """A copy of the test mesh with shape keys Basis and Smile (half on), active and selected."""
+    source = bpy.data.objects[name]
+    obj = source.copy()
+    obj.data = source.data.copy()
+    obj.name = "Keyed"
+    bpy.context.scene.collection.objects.link(obj)
+    obj.shape_key_add(name="Basis", from_mix=False)
+    smile = obj.shape_key_add(name="Smile", from_mix=False)
+    smile.data.foreach_set("co", (key_coords(smile) + np.float32(0.05)).reshape(-1))
+    smile.value = 0.5
+    obj.active_shape_key_index = 0
+    activate(obj.name)
+    push_undo("Keyed copy")
+    return obj.name
+
+
+def keyed_mesh_esc_restores(keyed):
+    for output in ('MESH', 'SHAPE_KEY'):
+        obj = bpy.data.objects[keyed]
+        obj.gauss_stylization.output = output
+        before = shape(obj)
+        start_live_run()
+        yield from wait_steps(5)
+        changed = not same_shape(shape(bpy.data.objects[keyed]), before)
+        press('ESC', *viewport_point())
+        yield from wait_stopped()
+        check("Esc restores a mesh with shape keys bit-exactly (%s output)" % output,
+              live_operator() is None and changed and same_shape(shape(bpy.data.objects[keyed]), before))
+
+
+def shape_keys_deleted_mid_run(keyed):
+    """Shape Keys panel > Delete All Shape Keys during a run (this used to crash Blender)."""
+    new_reports()
+    obj = bpy.data.objects[keyed]
+    obj.gauss_stylization.output = 'MESH'
+    original = coords(obj)
+    start_live_run()
+    yield from wait_steps(3)
+    with override():
+        bpy.ops.object.shape_key_remove(all=True)
+    op = live_operator()
+    steps = op.session.steps if op else 0
+    yield from wait_steps(steps + 3)
+    check("deleting the shape keys during a Mesh-output run lets it go on",
+          live_operator() is not None and live_operator().session.steps >= steps + 3)
+    press('ESC', *viewport_point())
+    yield from wait_stopped()
+    check("Esc then restores the vertices bit-exactly",
+          live_operator() is None and np.array_equal(coords(bpy.data.objects[keyed]), original))
+
+    obj.gauss_stylization.output = 'SHAPE_KEY'
+    start_live_run()
+    yield from wait_steps(3)
+    with override():
+        bpy.ops.object.shape_key_remove(all=True)
+    yield from wait_stopped()
+    obj = bpy.data.objects[keyed]
+    text = new_reports()
+    check("deleting the shape keys during a Shape-Key-output run stops it with a report",
+          live_operator() is None and "was deleted or renamed" in text, repr(text[-200:]))
+    check("... and leaves the mesh bit-exact without shape keys",
+          obj.data.shape_keys is None and np.array_equal(coords(obj), original))
+    press('ESC', *viewport_point())  # close the error report's popup, which takes the keys
+    yield 0.3
+
+
+def object_removed_by_script_mid_run(keyed):
+    """An add-on script removes the object from a timer callback during a run."""
+    obj = bpy.data.objects[keyed]
+    obj.gauss_stylization.output = 'SHAPE_KEY'
+    mesh_name, original = obj.data.name, coords(obj)
+    objects = len(bpy.data.objects)
+    start_live_run()
+    yield from wait_steps(5)
+    changed = bpy.data.objects[keyed].data.shape_keys is not None
+    bpy.data.objects.remove(bpy.data.objects[keyed])  # (this generator step is a bpy.app.timers callback)
+    yield from wait_stopped()
+    yield 0.2
+    text = new_reports()
+    check("removing the object by script during a run stops it with a report",
+          live_operator() is None and "object was deleted" in text, repr(text[-200:]))
+    mesh = bpy.data.meshes[mesh_name]
+    check("... its mesh is restored bit-exactly and the keys the run added are removed",
+          changed and mesh.shape_keys is None and np.array_equal(mesh_coords(mesh), original)
+          and len(bpy.data.objects) == objects - 1)
+
+
+def delete_key_mid_run(name):
+    """The artist presses Delete over the viewport during a run, then Ctrl+Z."""
+    activate(name)
+    push_undo("Before Delete")
+    original = coords(bpy.data.objects[name])
+    start_live_run()
+    yield from wait_steps(5)
+    press('DEL', *viewport_point())
+    yield from wait_stopped()
+    yield 0.2
+    text = new_reports()
+    check("Delete during a run deletes the object and stops the run with a report",
+          live_operator() is None and name not in bpy.data.objects and "object was deleted" in text,
+          repr(text[-200:]))
+    press('Z', *viewport_point(), ctrl=True)
+    yield 0.5
+    obj = bpy.data.objects.get(name)
+    check("Ctrl+Z brings the object back with its mesh bit-exactly as before the run",
+          obj is not None and np.array_equal(coords(obj), original))
+
+
+def viewport_closed_mid_run(name):
+    """The 3D view the run was started in is closed (areas joined) during the run."""
+    area, regions = view3d()
+    with bpy.context.temp_override(window=window(), area=area, region=regions['WINDOW']):
+        bpy.ops.screen.area_split(direction='VERTICAL', factor=0.5)
+    views = [a for a in window().screen.areas if a.type == 'VIEW_3D']
+    check("a second 3D view was opened", len(views) == 2)
+    activate(name)
+    original = coords(bpy.data.objects[name])
+    run_in = views[-1]
+    region = next(r for r in run_in.regions if r.type == 'WINDOW')
+    with bpy.context.temp_override(window=window(), area=run_in, region=region):
+        bpy.ops.object.gauss_stylize('INVOKE_DEFAULT')
+    yield from wait_steps(3)
+    with bpy.context.temp_override(window=window(), area=run_in):
+        bpy.ops.screen.area_close()
+    op = live_operator()
+    steps = op.session.steps if op else 0
+    yield from wait_steps(steps + 3)
+    check("closing the run's 3D view lets the run go on",
+          live_operator() is not None and live_operator().session.steps >= steps + 3)
+    press('ESC', *viewport_point())
+    yield from wait_stopped()
+    check("Esc then restores the mesh bit-exactly",
+          live_operator() is None and np.array_equal(coords(bpy.data.objects[name]), original))
+
+
+def save_and_reopen_mid_run(name):
+    path = os.path.join(tempfile.mkdtemp(prefix="gauss_windowed_"), "mid_run.blend")
+    activate(name)
+    start_live_run()
+    yield from wait_steps(5)
+    saved = coords(bpy.data.objects[name])
+    with bpy.context.temp_override(window=window()):
+        bpy.ops.wm.save_as_mainfile(filepath=path)
+    op = live_operator()
+    steps = op.session.steps if op else 0
+    yield from wait_steps(steps + 3)
+    check("saving during a run lets the run go on",
+          live_operator() is not None and live_operator().session.steps >= steps + 3)
+    with bpy.context.temp_override(window=window()):
+        bpy.ops.wm.open_mainfile(filepath=path)
+    check("opening a file during a run ends the run", live_operator() is None)
+    yield 0.5
+    obj = bpy.data.objects.get(name)
+    reopened = coords(obj) if obj is not None else None
+    check("the reopened file holds exactly the (finite) mesh that was saved",
+          reopened is not None and np.isfinite(reopened).all() and np.array_equal(reopened, saved))
+    activate(name)
+    check("a new run starts in the reopened file", start_live_run() == {'RUNNING_MODAL'})
+    yield from wait_steps(3)
+    press('ESC', *viewport_point())
+    yield from wait_stopped()
+    check("Esc in the reopened file restores the mesh bit-exactly",
+          live_operator() is None and np.array_equal(coords(bpy.data.objects[name]), saved))
+    os.remove(path)
+
+
 def screenshot_panel():
     os.makedirs(SHOTS, exist_ok=True)
     path = os.path.join(SHOTS, "panel.png")
@@ -247,6 +544,15 @@ def scenario():
     yield from esc_cancels_and_restores(name)
     yield from enter_keeps_and_undo_restores(name)
     yield from mouse_buttons(name)
+    yield from undo_keys_are_swallowed(name)
+    yield from edit_menu_undo_mid_run(name)
+    keyed = make_keyed_copy(name)
+    yield from keyed_mesh_esc_restores(keyed)
+    yield from shape_keys_deleted_mid_run(keyed)
+    yield from object_removed_by_script_mid_run(keyed)
+    yield from delete_key_mid_run(name)
+    yield from viewport_closed_mid_run(name)
+    yield from save_and_reopen_mid_run(name)  # last: it replaces the whole file
 
 
 # -- runner -------------------------------------------------------------------------
@@ -283,4 +589,5 @@ def runner(steps, started):
     return advance
 
 
-bpy.app.timers.register(runner(scenario(), time.monotonic()), first_interval=1.0)
+# Persistent: loading a file (save_and_reopen_mid_run) removes all other timers.
+bpy.app.timers.register(runner(scenario(), time.monotonic()), first_interval=1.0, persistent=True)
