@@ -13,13 +13,10 @@
 namespace gauss {
 namespace {
 
-int max_threads() {
-#ifdef _OPENMP
-  return std::min(omp_get_max_threads(), 8);
-#else
-  return 1;
-#endif
-}
+// The tree is always cut into this many parts, whatever the number of threads: the cut decides the
+// row numbering and with it the rounding, and results must not depend on the thread count (nor on
+// the machine). Two parts suit the 2-core target; more cores still speed up the other phases.
+constexpr int kParts = 2;
 
 // s -= sum_k values[k] * y[idx[k]] for the three columns. Two independent accumulator sets halve the
 // floating-point dependency chain; the pairing is fixed, so the result depends only on the data.
@@ -52,70 +49,105 @@ inline void subtract_gather(const int* idx, const double* values, int begin, int
 
 }  // namespace
 
-void CholeskySolver::factor(const Eigen::SparseMatrix<double>& A) {
-  n_ = static_cast<int>(A.rows());
-  const int n = n_;
-  // Fill-reducing ordering (approximate minimum degree on the pattern of A + A^T).
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> amd;
-  {
-    Eigen::SparseMatrix<double> full = A.selfadjointView<Eigen::Lower>();
-    Eigen::AMDOrdering<int>()(full, amd);
-  }
-  perm_.assign(amd.indices().data(), amd.indices().data() + n);  // perm_[new] = old
-  new_of_old_.assign(n, 0);
-  for (int i = 0; i < n; ++i) new_of_old_[perm_[i]] = i;
-  const std::vector<int>& new_of_old = new_of_old_;
+namespace {
 
-  // The permuted matrix's upper triangle by columns: column k holds row k of the lower triangle.
-  std::vector<int> up_start(n + 1, 0), up_rows;
-  std::vector<double> up_values;
+// The permuted matrix's upper triangle by columns (column k holds row k of the lower triangle), for
+// the up-looking factorization. A: lower triangle, caller's numbering; new_of_old: the ordering.
+void permuted_upper(const Eigen::SparseMatrix<double>& A, const std::vector<int>& new_of_old,
+                    std::vector<int>& start, std::vector<int>& rows, std::vector<double>& values) {
+  const int n = static_cast<int>(A.rows());
+  start.assign(n + 1, 0);
   for (int j = 0; j < n; ++j)
     for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it)
-      if (it.row() >= j) ++up_start[std::max(new_of_old[it.row()], new_of_old[j]) + 1];
-  for (int k = 0; k < n; ++k) up_start[k + 1] += up_start[k];
-  up_rows.resize(up_start[n]);
-  up_values.resize(up_start[n]);
-  {
-    std::vector<int> fill(up_start.begin(), up_start.end() - 1);
-    for (int j = 0; j < n; ++j)
-      for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it)
-        if (it.row() >= j) {
-          const int a = new_of_old[it.row()], b = new_of_old[j];
-          const int slot = fill[std::max(a, b)]++;
-          up_rows[slot] = std::min(a, b);
-          up_values[slot] = it.value();
-        }
-  }
+      if (it.row() >= j) ++start[std::max(new_of_old[it.row()], new_of_old[j]) + 1];
+  for (int k = 0; k < n; ++k) start[k + 1] += start[k];
+  rows.resize(start[n]);
+  values.resize(start[n]);
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int j = 0; j < n; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it)
+      if (it.row() >= j) {
+        const int a = new_of_old[it.row()], b = new_of_old[j];
+        const int slot = fill[std::max(a, b)]++;
+        rows[slot] = std::min(a, b);
+        values[slot] = it.value();
+      }
+}
 
-  // Symbolic factorization (up-looking): the elimination tree and the column counts of L. Row k of
-  // L has an entry in column i for every i on the tree paths from the entries of row k up to k.
-  std::vector<int> parent(n, -1), flag(n, -1), col_count(n, 0), row_count(n, 0);
+// Symbolic up-looking factorization: the elimination tree and the row and column counts of L.
+// Row k of L has an entry in column i for every i on the tree paths from row k's entries up to k.
+void elimination_tree(int n, const std::vector<int>& start, const std::vector<int>& rows, std::vector<int>& parent,
+                      std::vector<int>& col_count, std::vector<int>& row_count) {
+  parent.assign(n, -1);
+  col_count.assign(n, 0);
+  row_count.assign(n, 0);
+  std::vector<int> flag(n, -1);
   for (int k = 0; k < n; ++k) {
     flag[k] = k;
-    for (int p = up_start[k]; p < up_start[k + 1]; ++p)
-      for (int i = up_rows[p]; flag[i] != k; i = parent[i]) {
+    for (int p = start[k]; p < start[k + 1]; ++p)
+      for (int i = rows[p]; flag[i] != k; i = parent[i]) {
         if (parent[i] == -1) parent[i] = k;
         ++col_count[i];
         ++row_count[k];
         flag[i] = k;
       }
   }
+}
+
+}  // namespace
+
+void CholeskySolver::factor(const Eigen::SparseMatrix<double>& A) {
+  n_ = static_cast<int>(A.rows());
+  const int n = n_;
+  // 1. Fill-reducing ordering (approximate minimum degree on the pattern of A + A^T).
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> amd;
+  {
+    Eigen::SparseMatrix<double> full = A.selfadjointView<Eigen::Lower>();
+    Eigen::AMDOrdering<int>()(full, amd);
+  }
+  std::vector<int> amd_new_of_old(n);
+  for (int i = 0; i < n; ++i) amd_new_of_old[amd.indices()[i]] = i;
+  std::vector<int> up_start, up_rows, parent, col_count, row_count;
+  std::vector<double> up_values;
+  permuted_upper(A, amd_new_of_old, up_start, up_rows, up_values);
+  elimination_tree(n, up_start, up_rows, parent, col_count, row_count);
+
+  // 2. Cut the tree into one group of subtrees per thread plus the rows above the cut, and number
+  // the rows group by group: each thread then owns a contiguous range of rows and of L's columns
+  // (no two threads write the same cache lines), and the order is still a topological order of
+  // the tree, so L has exactly the same fill.
+  std::vector<double> work(n);
+  for (int j = 0; j < n; ++j) work[j] = 1.0 + col_count[j] + row_count[j];
+  std::vector<std::vector<int>> groups = partition_elimination_tree(parent, work, kParts);
+  part_start_.assign(1, 0);
+  std::vector<int> sequence;
+  for (const std::vector<int>& g : groups) {
+    sequence.insert(sequence.end(), g.begin(), g.end());
+    part_start_.push_back(static_cast<int>(sequence.size()));
+  }
+  part_start_.pop_back();  // the last group is the rows above the cut: [part_start_.back(), n)
+  perm_.resize(n);
+  new_of_old_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    perm_[i] = amd.indices()[sequence[i]];
+    new_of_old_[perm_[i]] = i;
+  }
+  permuted_upper(A, new_of_old_, up_start, up_rows, up_values);
+  elimination_tree(n, up_start, up_rows, parent, col_count, row_count);
   col_start_.assign(n + 1, 0);
   for (int j = 0; j < n; ++j) col_start_[j + 1] = col_start_[j] + col_count[j];
   col_rows_.assign(col_start_[n], 0);
   col_values_.assign(col_start_[n], 0.0);
-  std::vector<double> work(n);
-  for (int j = 0; j < n; ++j) work[j] = 1.0 + col_count[j] + row_count[j];
-  partition_elimination_tree(parent, work, max_threads());
 
-  // Numeric factorization (up-looking LDL^T). Rows of disjoint subtrees write disjoint columns and
-  // read only their own subtree, so each thread factors its part; the rows above the cut follow.
+  // 3. Numeric factorization (up-looking LDL^T). Rows of a thread's subtrees read and write only
+  // that thread's columns; the rows above the cut follow on one thread.
   std::vector<int> fill_count(n, 0);  // entries written so far in each column
   std::vector<double> D(n, 0.0);
-  bool ok = true;
-  auto factor_rows = [&](const std::vector<int>& rows, std::vector<double>& Y, std::vector<int>& mark,
+  int failed = 0;
+  auto factor_rows = [&](int first, int last, std::vector<double>& Y, std::vector<int>& mark,
                          std::vector<int>& pattern) {
-    for (int k : rows) {
+    int bad = 0;
+    for (int k = first; k < last; ++k) {
       int top = n;
       mark[k] = k;
       for (int p = up_start[k]; p < up_start[k + 1]; ++p) {
@@ -143,47 +175,59 @@ void CholeskySolver::factor(const Eigen::SparseMatrix<double>& A) {
         ++fill_count[i];
       }
       D[k] = d;
-      if (!(d > 0) || !std::isfinite(d)) ok = false;
+      bad += !(d > 0) || !std::isfinite(d);
     }
+    return bad;
   };
-  const int parts = static_cast<int>(parallel_rows_.size());
-#pragma omp parallel if (parts > 1 && n > 4096) num_threads(parts)
+  const int parts = static_cast<int>(part_start_.size()) - 1;
+#pragma omp parallel if (parts > 1 && n > 4096) reduction(+ : failed)
   {
     std::vector<double> Y(n, 0.0);
     std::vector<int> mark(n, -1), pattern(n);
 #pragma omp for schedule(static, 1)
-    for (int t = 0; t < parts; ++t) factor_rows(parallel_rows_[t], Y, mark, pattern);
+    for (int t = 0; t < parts; ++t) failed += factor_rows(part_start_[t], part_start_[t + 1], Y, mark, pattern);
   }
   {
     std::vector<double> Y(n, 0.0);
     std::vector<int> mark(n, -1), pattern(n);
-    factor_rows(top_rows_, Y, mark, pattern);
+    failed += factor_rows(part_start_.back(), n, Y, mark, pattern);
   }
-  if (!ok)
+  if (failed)
     throw std::runtime_error("the mesh's Laplacian is not positive definite (the mesh is too degenerate to solve)");
   inv_diag_.resize(n);
   for (int i = 0; i < n; ++i) inv_diag_[i] = 1.0 / D[i];
 
-  // The same factor by rows, for the forward sweep.
+  // 4. The same factor by rows, for the forward sweep. A row of a part only has entries in that
+  // part's columns, so the parts fill their rows in parallel; the rows above the cut come last.
   row_start_.assign(n + 1, 0);
   for (int p = 0; p < col_start_[n]; ++p) ++row_start_[col_rows_[p] + 1];
   for (int i = 0; i < n; ++i) row_start_[i + 1] += row_start_[i];
   row_cols_.resize(col_rows_.size());
   row_values_.resize(col_values_.size());
   std::vector<int> fill(row_start_.begin(), row_start_.end() - 1);
-  for (int j = 0; j < n; ++j)  // columns in increasing order: each row's entries come out sorted
-    for (int p = col_start_[j]; p < col_start_[j + 1]; ++p) {
-      const int slot = fill[col_rows_[p]]++;
-      row_cols_[slot] = j;
-      row_values_[slot] = col_values_[p];
-    }
+  const int top_begin = part_start_.back();
+  auto fill_rows = [&](int first_col, int last_col, int first_row, int last_row) {
+    for (int j = first_col; j < last_col; ++j)  // increasing columns: each row comes out sorted
+      for (int p = col_start_[j]; p < col_start_[j + 1]; ++p) {
+        const int i = col_rows_[p];
+        if (i < first_row || i >= last_row) continue;
+        const int slot = fill[i]++;
+        row_cols_[slot] = j;
+        row_values_[slot] = col_values_[p];
+      }
+  };
+#pragma omp parallel for schedule(static, 1) if (parts > 1 && n > 4096)
+  for (int t = 0; t < parts; ++t) fill_rows(part_start_[t], part_start_[t + 1], part_start_[t], part_start_[t + 1]);
+  fill_rows(0, n, top_begin, n);
 }
 
-void CholeskySolver::partition_elimination_tree(const std::vector<int>& parent, const std::vector<double>& work,
-                                                int parts) {
+std::vector<std::vector<int>> CholeskySolver::partition_elimination_tree(const std::vector<int>& parent,
+                                                                         const std::vector<double>& work,
+                                                                         int parts) const {
   const int n = n_;
-  parallel_rows_.assign(std::max(parts, 1), {});
-  top_rows_.clear();
+  const int P = std::max(parts, 1);
+  std::vector<std::vector<int>> groups(P + 1);  // P parts, then the rows above the cut
+  std::vector<int>& top_rows = groups[P];
   std::vector<int> child_start(n + 1, 0), children(n);
   std::vector<double> subtree(work);
   for (int j = 0; j < n; ++j)
@@ -200,7 +244,6 @@ void CholeskySolver::partition_elimination_tree(const std::vector<int>& parent, 
   double total = 0;
   for (int j = 0; j < n; ++j)
     if (parent[j] < 0) total += subtree[j];
-  const int P = static_cast<int>(parallel_rows_.size());
 
   // Cut the heaviest subtree's root off, step by step, estimating the time of each cut as the rows
   // above it plus max(heaviest subtree, even share); keep the best number of steps. Trees with a long
@@ -233,7 +276,7 @@ void CholeskySolver::partition_elimination_tree(const std::vector<int>& parent, 
     return std::make_pair(best_steps, roots);
   };
   const int steps = run(-1, nullptr).first;
-  std::vector<int> roots = run(steps, &top_rows_).second;  // heaviest first
+  std::vector<int> roots = run(steps, &top_rows).second;  // heaviest first
   // Longest-processing-time packing of the remaining subtrees into the parts.
   std::vector<double> load(P, 0.0);
   std::vector<int> stack;
@@ -244,12 +287,12 @@ void CholeskySolver::partition_elimination_tree(const std::vector<int>& parent, 
     while (!stack.empty()) {
       const int v = stack.back();
       stack.pop_back();
-      parallel_rows_[bin].push_back(v);
+      groups[bin].push_back(v);
       for (int k = child_start[v]; k < child_start[v + 1]; ++k) stack.push_back(children[k]);
     }
   }
-  for (auto& rows : parallel_rows_) std::sort(rows.begin(), rows.end());
-  std::sort(top_rows_.begin(), top_rows_.end());
+  for (auto& g : groups) std::sort(g.begin(), g.end());  // ascending: a topological order
+  return groups;
 }
 
 void CholeskySolver::solve_in_place(double* B, double* y) const {
@@ -275,18 +318,18 @@ void CholeskySolver::solve_ordered_in_place(double* y) const {
     y[3 * j + 1] = s1;
     y[3 * j + 2] = s2;
   };
-  const int parts = static_cast<int>(parallel_rows_.size());
-  // Forward (L y = b): the subtrees, one part per thread, then the rows above the cut.
+  const int parts = static_cast<int>(part_start_.size()) - 1;
+  // Forward (L y = b): the subtrees, one range per thread, then the rows above the cut.
 #pragma omp parallel for schedule(static, 1) if (parts > 1 && n_ > 4096)
   for (int t = 0; t < parts; ++t)
-    for (int i : parallel_rows_[t]) forward_row(i);
-  for (int i : top_rows_) forward_row(i);
+    for (int i = part_start_[t]; i < part_start_[t + 1]; ++i) forward_row(i);
+  for (int i = part_start_.back(); i < n_; ++i) forward_row(i);
   // Backward (D L^T x = y): the rows above the cut first, then the subtrees; every row a row reads
   // lies above it in the tree and is final by then.
-  for (auto it = top_rows_.rbegin(); it != top_rows_.rend(); ++it) backward_row(*it);
+  for (int j = n_ - 1; j >= part_start_.back(); --j) backward_row(j);
 #pragma omp parallel for schedule(static, 1) if (parts > 1 && n_ > 4096)
   for (int t = 0; t < parts; ++t)
-    for (auto it = parallel_rows_[t].rbegin(); it != parallel_rows_[t].rend(); ++it) backward_row(*it);
+    for (int j = part_start_[t + 1] - 1; j >= part_start_[t]; --j) backward_row(j);
 }
 
 }  // namespace gauss

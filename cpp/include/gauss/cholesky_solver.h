@@ -39,10 +39,12 @@ class CholeskySolver {
   std::vector<int> col_start_, col_rows_;
   std::vector<double> col_values_;
   std::vector<double> inv_diag_;  // 1 / D
-  // Rows of each thread's subtrees (ascending), then the rows above the cut (ascending).
-  std::vector<std::vector<int>> parallel_rows_;
-  std::vector<int> top_rows_;
-  void partition_elimination_tree(const std::vector<int>& parent, const std::vector<double>& work, int parts);
+  // Rows are numbered group by group: thread t's subtrees are rows [part_start_[t], part_start_[t+1]),
+  // the rows above the cut are [part_start_.back(), n).
+  std::vector<int> part_start_;
+  // Groups of rows (ascending): one per part, then the rows above the cut.
+  std::vector<std::vector<int>> partition_elimination_tree(const std::vector<int>& parent,
+                                                           const std::vector<double>& work, int parts) const;
 };
 
 }  // namespace gauss
