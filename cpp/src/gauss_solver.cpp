@@ -53,6 +53,37 @@ bool solve_symmetric3(const Matrix3d& H, const Vector3d& b, Vector3d& x) {
   return x.allFinite();
 }
 
+// One Newton update of a face's auxiliary normal n* (Eqs. 17-22): minimize
+// L_n = -g(n) + lambda sum_k w_k/2 (u_k + n.e*_k)^2 over unit n. es: the face's three e*_ij,
+// lw: lambda * w_ij of each, u: the scaled duals. Returns the new unit normal (n if no step).
+Vector3d newton_normal(const PreferenceFunction& style, const Vector3d& n, const Vector3d* es, const double* lw,
+                       const double* u) {
+  double g;
+  Vector3d grad_g;
+  Matrix3d hess_g;
+  style.evaluate(n, g, grad_g, hess_g);
+  Matrix3d H = -hess_g;
+  Vector3d grad = -grad_g;
+  for (int k = 0; k < 3; ++k) {
+    H.noalias() += lw[k] * (es[k] * es[k].transpose());
+    grad += (lw[k] * (es[k].dot(n) + u[k])) * es[k];
+  }
+  Vector3d newton;
+  Vector3d d = Vector3d::Constant(NAN);  // stays NaN (-> the fallback below) if Newton fails
+  if (solve_symmetric3(H, -grad, newton)) {
+    d = newton - newton.dot(n) * n;
+    // A tangential part at rounding level means Newton only rescales n (exactly so in the first
+    // round for styles that depend on x.axis alone: plane, cylinder, cone); its sign is noise, and
+    // trusting it made the result depend on the mesh's position. Use the fallback instead.
+    if (!(d.norm() > 1e-8 * newton.norm())) d = Vector3d::Constant(NAN);
+  }
+  // Fall back to a projected gradient step when Newton fails or points uphill.
+  if (!(d.allFinite() && d.dot(grad) <= 0)) d = -0.1 * (grad - grad.dot(n) * n);
+  const Vector3d m = n + d;
+  const double len = m.norm();
+  return (len > 1e-300 && std::isfinite(len)) ? Vector3d(m / len) : n;
+}
+
 }  // namespace
 
 GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, int num_faces,
@@ -60,7 +91,7 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
                          double lambda) {
   if (num_vertices <= 0) throw std::invalid_argument("the mesh has no vertices");
   if (num_faces <= 0) throw std::invalid_argument("the mesh has no faces");
-  if (!std::isfinite(lambda) || lambda < 0) throw std::invalid_argument("lambda must be a finite number >= 0");
+  if (!(lambda >= 0 && lambda <= 1e8)) throw std::invalid_argument("lambda must be a number between 0 and 1e8");
   for (int i = 0; i < 3 * num_vertices; ++i)
     if (!std::isfinite(V[i])) {
       std::ostringstream msg;
@@ -98,10 +129,14 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
       ++referenced;
     }
   scale_ = (hi - lo).maxCoeff();
-  if (!std::isfinite(scale_) || !(scale_ > 1e-300) || !sum.allFinite())
+  // Headroom: results leave the bounding box (pins up to 1e12 sizes away), and near 1e308 the output
+  // x * scale + center overflowed to infinity.
+  if (!(scale_ > 1e-300) || !(lo.minCoeff() >= -1e200 && hi.maxCoeff() <= 1e200) || !sum.allFinite())
     throw std::invalid_argument(
-        "the mesh's extent is zero or too large to represent (all vertices at one point, or coordinates near the floating-point limit)");
-  center_ = sum / referenced;
+        "the mesh's extent is zero or too large to represent (all vertices at one point, or coordinates beyond +-1e200)");
+  // Clamped into the bounding box: a centroid rounded outside it (all x equal, far from the origin)
+  // put the normalized mesh ~1e263 from the origin, and every later sum lost all precision.
+  center_ = (sum / referenced).cwiseMax(lo).cwiseMin(hi);
   rest_.resize(num_vertices);
   for (int v = 0; v < num_vertices; ++v) rest_[v] = (input_[v] - center_) / scale_;
   X_ = rest_;
@@ -187,7 +222,7 @@ void GaussSolver::set_face_styles(const int64_t* style_of_input_face, int count)
 }
 
 void GaussSolver::set_lambda(double lambda) {
-  if (!std::isfinite(lambda) || lambda < 0) throw std::invalid_argument("lambda must be a finite number >= 0");
+  if (!(lambda >= 0 && lambda <= 1e8)) throw std::invalid_argument("lambda must be a number between 0 and 1e8");
   // Eq. 27: lambda only scales the right-hand side, so the factor stays valid.
   lambda_ = lambda;
 }
@@ -218,6 +253,12 @@ void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin
     if (!targets[i].allFinite()) {
       std::ostringstream msg;
       msg << "the target of pinned vertex " << v << " is NaN or infinite";
+      throw std::invalid_argument(msg.str());
+    }
+    // Farther out, squared edge lengths overflow (~1e150 mesh sizes) and E_ARAP turns infinite.
+    if (!((targets[i] - center_).cwiseAbs().maxCoeff() <= 1e12 * scale_)) {
+      std::ostringstream msg;
+      msg << "the target of pinned vertex " << v << " is too far from the mesh (more than 1e12 times its size)";
       throw std::invalid_argument(msg.str());
     }
   }
@@ -266,26 +307,33 @@ void GaussSolver::factor() {
   for (int v = 0; v < nV; ++v) fixed_pos[v] = rest_[v];
   for (size_t i = 0; i < pinned_.size(); ++i) fixed_pos[pinned_[i]] = (pin_targets_[i] - center_) / scale_;
 
-  std::vector<Eigen::Triplet<double>> triplets;
+  // The lower triangle of L_ff, built column by column from the edge list (sorted by (lo, hi), and
+  // the numbering of unknowns follows the vertices'), with the fixed neighbours moved to the rhs.
+  std::vector<double> diagonal(n, 0.0), edge_w(topo_.edges.size(), 0.0);
   fixed_rhs_.assign(n, Vector3d::Zero());
   for (size_t f = 0; f < topo_.faces.size(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = topo_.faces[f][k], b = topo_.faces[f][(k + 1) % 3];
-      const double w = slot_weight_[f][k];
-      const int ua = unknown_of_vertex_[a], ub = unknown_of_vertex_[b];
-      if (ua >= 0) triplets.emplace_back(ua, ua, w);
-      if (ub >= 0) triplets.emplace_back(ub, ub, w);
-      if (ua >= 0 && ub >= 0) {
-        triplets.emplace_back(std::max(ua, ub), std::min(ua, ub), -w);
-      } else if (ua >= 0) {
-        fixed_rhs_[ua] += w * fixed_pos[b];
-      } else if (ub >= 0) {
-        fixed_rhs_[ub] += w * fixed_pos[a];
-      }
-    }
+    for (int k = 0; k < 3; ++k) edge_w[topo_.face_edge[f][k]] += slot_weight_[f][k];
+  std::vector<int> col_count(n, 1);  // the diagonal
+  for (size_t e = 0; e < topo_.edges.size(); ++e) {
+    const int a = topo_.edges[e][0], b = topo_.edges[e][1];
+    const int ua = unknown_of_vertex_[a], ub = unknown_of_vertex_[b];
+    const double w = edge_w[e];
+    if (ua >= 0) diagonal[ua] += w;
+    if (ub >= 0) diagonal[ub] += w;
+    if (ua >= 0 && ub >= 0) ++col_count[ua];  // ua < ub: entry (ub, ua) in column ua
+    else if (ua >= 0) fixed_rhs_[ua] += w * fixed_pos[b];
+    else if (ub >= 0) fixed_rhs_[ub] += w * fixed_pos[a];
+  }
   if (n > 0) {
     Eigen::SparseMatrix<double> A(n, n);
-    A.setFromTriplets(triplets.begin(), triplets.end());
+    A.reserve(col_count);
+    for (int u = 0; u < n; ++u) A.insert(u, u) = 0.0;
+    for (size_t e = 0; e < topo_.edges.size(); ++e) {
+      const int ua = unknown_of_vertex_[topo_.edges[e][0]], ub = unknown_of_vertex_[topo_.edges[e][1]];
+      if (ua >= 0 && ub >= 0) A.insert(ub, ua) = -edge_w[e];
+    }
+    for (int u = 0; u < n; ++u) A.coeffRef(u, u) = diagonal[u];
+    A.makeCompressed();
     cholesky_.factor(A);
   }
   ++factorization_count_;
@@ -293,7 +341,11 @@ void GaussSolver::factor() {
 }
 
 void GaussSolver::face_pass() {
+  // Algorithm 1's initialization (n* = n_f, e* = e_ij, u = 0) fused with the first round's normal
+  // update, which only needs this face's own edges: the first round reads no shared array.
   const int nF = static_cast<int>(topo_.faces.size());
+  const double lam = lambda_;
+  const double zero[3] = {0, 0, 0};
 #pragma omp parallel for schedule(static) if (nF > kParallelMin)
   for (int f = 0; f < nF; ++f) {
     const auto& t = topo_.faces[f];
@@ -303,18 +355,20 @@ void GaussSolver::face_pass() {
     const double len = c.norm();
     const double size = e[0].squaredNorm() + e[1].squaredNorm() + e[2].squaredNorm();
     const bool degenerate = !(len > 1e-12 * size) || !std::isfinite(len);
-    if (!degenerate) normal_star_[f] = c / len;
     const int s = face_style_[f];
     face_mu_[f] = (!degenerate && s >= 0) ? styles_[s].mu() : 0.0;
     dual_[f] = {0, 0, 0};
+    if (face_mu_[f] > 0.0) {
+      // The sign of e*_ij does not matter while u = 0 (both terms are even in e*).
+      const double lw[3] = {lam * slot_edge_weight_[f][0], lam * slot_edge_weight_[f][1],
+                            lam * slot_edge_weight_[f][2]};
+      normal_star_[f] = newton_normal(styles_[s], c / len, e, lw, zero);
+    }
     Matrix3d cov = e[0] * slot_rest_[f][0].transpose();
     cov.noalias() += e[1] * slot_rest_[f][1].transpose();
     cov.noalias() += e[2] * slot_rest_[f][2].transpose();
     face_cov_[f] = cov;
   }
-  const int nE = static_cast<int>(topo_.edges.size());
-#pragma omp parallel for schedule(static) if (nE > kParallelMin)
-  for (int e = 0; e < nE; ++e) edge_star_[e] = X_[topo_.edges[e][1]] - X_[topo_.edges[e][0]];
 }
 
 void GaussSolver::fit_rotations() {
@@ -332,40 +386,20 @@ void GaussSolver::fit_rotations() {
 void GaussSolver::admm_round(bool first_round) {
   const int nF = static_cast<int>(topo_.faces.size());
   const double lam = lambda_;
-  // Normals (Eqs. 17-22); the previous round's dual update (Eq. 25) is fused in front.
+  // Normals (Eqs. 17-22): the first round's update happened in face_pass(). Later rounds start with
+  // the previous round's dual update (Eq. 25).
+  if (!first_round) {
 #pragma omp parallel for schedule(static) if (nF > kParallelMin)
-  for (int f = 0; f < nF; ++f) {
-    if (face_mu_[f] == 0.0) continue;
-    Vector3d n = normal_star_[f];
-    const auto& fe = topo_.face_edge[f];
-    if (!first_round)
-      for (int k = 0; k < 3; ++k) dual_[f][k] += edge_star_[fe[k]].dot(n);
-    double g;
-    Vector3d grad_g;
-    Matrix3d hess_g;
-    styles_[face_style_[f]].evaluate(n, g, grad_g, hess_g);
-    Matrix3d H = -hess_g;
-    Vector3d grad = -grad_g;
-    for (int k = 0; k < 3; ++k) {
-      const Vector3d& es = edge_star_[fe[k]];
-      const double w = lam * slot_edge_weight_[f][k];
-      H.noalias() += w * (es * es.transpose());
-      grad += (w * (es.dot(n) + dual_[f][k])) * es;
+    for (int f = 0; f < nF; ++f) {
+      if (face_mu_[f] == 0.0) continue;
+      const Vector3d n = normal_star_[f];
+      const auto& fe = topo_.face_edge[f];
+      const Vector3d es[3] = {edge_star_[fe[0]], edge_star_[fe[1]], edge_star_[fe[2]]};
+      for (int k = 0; k < 3; ++k) dual_[f][k] += es[k].dot(n);
+      const double lw[3] = {lam * slot_edge_weight_[f][0], lam * slot_edge_weight_[f][1],
+                            lam * slot_edge_weight_[f][2]};
+      normal_star_[f] = newton_normal(styles_[face_style_[f]], n, es, lw, dual_[f].data());
     }
-    Vector3d newton;
-    Vector3d d = Vector3d::Constant(NAN);  // stays NaN (-> the fallback below) if Newton fails
-    if (solve_symmetric3(H, -grad, newton)) {
-      d = newton - newton.dot(n) * n;
-      // A tangential part at rounding level means Newton only rescales n (exactly so in the first
-      // round for styles that depend on x.axis alone: plane, cylinder, cone); its sign is noise, and
-      // trusting it made the result depend on the mesh's position. Use the fallback instead.
-      if (!(d.norm() > 1e-8 * newton.norm())) d = Vector3d::Constant(NAN);
-    }
-    // Fall back to a projected gradient step when Newton fails or points uphill.
-    if (!(d.allFinite() && d.dot(grad) <= 0)) d = -0.1 * (grad - grad.dot(n) * n);
-    const Vector3d m = n + d;
-    const double len = m.norm();
-    if (len > 1e-300 && std::isfinite(len)) normal_star_[f] = m / len;
   }
   // Edges (Eq. 24): (I + sum mu n n^T) e* = e - sum mu u n over the styled faces of the edge.
   const int nE = static_cast<int>(topo_.edges.size());

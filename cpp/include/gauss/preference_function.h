@@ -21,7 +21,7 @@ struct StyleParams {
   // Weight of the discrete normals relative to the rings (only used when rings exist).
   double axis_contribution = 0.5;
   double sigma = 4.0;  // concentration of every term (> 0)
-  double mu = 1.0;     // weight of -mu * g in the energy (>= 0)
+  double mu = 1.0;     // weight of -mu * g in the energy (0 to 1e6)
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // orientation on the Gauss sphere
 };
 
