@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""Scale measurement: set-up time, time per step and memory of the solver on a ~1M-face mesh.
+
+The mesh is a lumpy sphere made from a subdivided cube, n by n quads per side (n = 289: 501,128
+vertices, 1,002,252 faces), generated here with numpy. Runs through gauss_core as the add-on does;
+scripts/measure_scale.sh wraps it in /usr/bin/time -v for the peak resident set size.
+
+usage: measure_scale.py [--n 289] [--steps 5] [--style cube] [--threads N]
+Imports gauss_core from $GAUSS_BUILD_DIR/python (default: <repo>/build/python).
+"""
+import argparse
+import os
+import pathlib
+import resource
+import sys
+import time
+
+import numpy as np
+
+REPO = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(pathlib.Path(os.environ.get("GAUSS_BUILD_DIR", REPO / "build")) / "python"))
+import gauss_core  # noqa: E402
+
+
+def peak_rss_mb():
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # Linux: kilobytes
+
+
+def cube_sphere(n):
+    """Closed, consistently oriented sphere from a cube with n by n quads per side (6n^2+2 vertices)."""
+    u, v = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="ij")
+    keys, faces = [], []
+    for axis in range(3):
+        for side in (0, n):
+            c = np.empty((n + 1, n + 1, 3), np.int64)
+            c[..., axis] = side
+            c[..., (axis + 1) % 3] = u
+            c[..., (axis + 2) % 3] = v
+            keys.append((c[..., 0] * (n + 1) + c[..., 1]) * (n + 1) + c[..., 2])
+    keys = np.stack(keys)  # (6, n+1, n+1) lattice keys
+    unique, index = np.unique(keys.ravel(), return_inverse=True)
+    index = index.reshape(keys.shape)
+    for f, side in enumerate([0, n] * 3):
+        p00, p10 = index[f, :-1, :-1].ravel(), index[f, 1:, :-1].ravel()
+        p11, p01 = index[f, 1:, 1:].ravel(), index[f, :-1, 1:].ravel()
+        if side == n:
+            faces += [np.stack([p00, p10, p11], 1), np.stack([p00, p11, p01], 1)]
+        else:
+            faces += [np.stack([p00, p11, p10], 1), np.stack([p00, p01, p11], 1)]
+    k = unique
+    P = np.stack([k // ((n + 1) ** 2), (k // (n + 1)) % (n + 1), k % (n + 1)], 1) * (2.0 / n) - 1.0
+    P /= np.linalg.norm(P, axis=1, keepdims=True)
+    P *= 1.0 + 0.05 * np.sin(5 * P[:, :1]) * np.cos(3 * P[:, 1:2])  # lumpy, so the style has work to do
+    P *= [1.1, 0.9, 0.8]
+    return np.ascontiguousarray(P), np.ascontiguousarray(np.concatenate(faces).astype(np.int32))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--n", type=int, default=289)
+    ap.add_argument("--steps", type=int, default=5)
+    ap.add_argument("--style", default="cube")
+    ap.add_argument("--threads", type=int, default=0)
+    args = ap.parse_args()
+    if args.threads > 0:
+        gauss_core.set_num_threads(args.threads)
+
+    t = time.perf_counter()
+    V, F = cube_sphere(args.n)
+    print(f"mesh: {len(V):,} vertices, {len(F):,} faces (generated in {time.perf_counter() - t:.2f} s); "
+          f"threads: {gauss_core.get_num_threads()}")
+    rss_mesh = peak_rss_mb()
+
+    t = time.perf_counter()
+    s = gauss_core.Solver(V, F)
+    s.set_styles([gauss_core.Style.preset(args.style)])
+    setup = time.perf_counter() - t
+    rss_setup = peak_rss_mb()
+
+    step_times = []
+    for _ in range(args.steps):
+        t = time.perf_counter()
+        s.step()
+        step_times.append(time.perf_counter() - t)
+    phases = {k: v for k, v in s.last_step_ms.items() if k != "threads"}  # milliseconds per phase
+    out = np.empty((len(V), 3), np.float32)
+    t = time.perf_counter()
+    s.vertices_into(out)
+    readout = time.perf_counter() - t
+    moved = np.abs(out - V).max()
+
+    print(f"setup_s: {setup:.2f}")
+    print(f"step_s: median {np.median(step_times):.3f}, first {step_times[0]:.3f}, all "
+          + " ".join(f"{x:.3f}" for x in step_times))
+    print("last step phases (ms): " + ", ".join(f"{k} {v:.0f}" for k, v in phases.items()))
+    print(f"vertices_into float32: {readout * 1e3:.1f} ms; finite: {bool(np.isfinite(out).all())}; "
+          f"max displacement: {moved:.4f}")
+    print(f"peak_rss_mb: after mesh {rss_mesh:.0f}, after setup {rss_setup:.0f}, at end {peak_rss_mb():.0f}")
+    if not np.isfinite(out).all():
+        sys.exit("non-finite vertices")
+
+
+if __name__ == "__main__":
+    main()
