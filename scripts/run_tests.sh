@@ -21,8 +21,8 @@ run_part "Python module (pytest)" env GAUSS_BUILD_DIR="$PWD/build" /usr/bin/pyth
 run_part "Blender add-on, headless" \
   blender -b --factory-startup --python-exit-code 1 -P tests/blender/run_headless.py -- "$PWD/build"
 run_part "Blender add-on, real window (xvfb)" bash tests/blender/run_windowed.sh "$PWD/build"
-[ -f scripts/run_sanitizers.sh ] && run_part "C++ tests under ASan+UBSan" bash scripts/run_sanitizers.sh build-asan
-[ -f scripts/run_fuzz.sh ] && run_part "libFuzzer (60 s)" bash scripts/run_fuzz.sh 60
+run_part "C++ tests under ASan+UBSan" bash scripts/run_sanitizers.sh build-asan
+run_part "libFuzzer (60 s)" bash scripts/run_fuzz.sh 60
 
 echo; echo "================ summary ================"
 printf '%s\n' "${results[@]}"
