@@ -75,7 +75,7 @@ Vector3d newton_normal(const PreferenceFunction& style, const Vector3d& n, const
     // A tangential part at rounding level means Newton only rescales n (exactly so in the first
     // round for styles that depend on x.axis alone: plane, cylinder, cone); its sign is noise, and
     // trusting it made the result depend on the mesh's position. Use the fallback instead.
-    if (!(d.norm() > 1e-8 * newton.norm())) d = Vector3d::Constant(NAN);
+    if (!(d.squaredNorm() > 1e-16 * newton.squaredNorm())) d = Vector3d::Constant(NAN);
   }
   // Fall back to a projected gradient step when Newton fails or points uphill.
   if (!(d.allFinite() && d.dot(grad) <= 0)) d = -0.1 * (grad - grad.dot(n) * n);
@@ -491,6 +491,7 @@ void GaussSolver::solve_and_recenter() {
     if (unknown_of_vertex_[v] < 0) X_[v] = rest_[v];  // the anchor
     component_sum_[c] += X_[v];
   }
+#pragma omp parallel for schedule(static) if (nV > kParallelMin)
   for (int v = 0; v < nV; ++v) {
     const int c = topo_.component[v];
     if (c < 0 || !component_free_[c]) continue;
