@@ -126,12 +126,8 @@ void CholeskySolver::factor(const Eigen::SparseMatrix<double>& A) {
     part_start_.push_back(static_cast<int>(sequence.size()));
   }
   part_start_.pop_back();  // the last group is the rows above the cut: [part_start_.back(), n)
-  perm_.resize(n);
   new_of_old_.resize(n);
-  for (int i = 0; i < n; ++i) {
-    perm_[i] = amd.indices()[sequence[i]];
-    new_of_old_[perm_[i]] = i;
-  }
+  for (int i = 0; i < n; ++i) new_of_old_[amd.indices()[sequence[i]]] = i;
   permuted_upper(A, new_of_old_, up_start, up_rows, up_values);
   elimination_tree(n, up_start, up_rows, parent, col_count, row_count);
   col_start_.assign(n + 1, 0);
@@ -293,14 +289,6 @@ std::vector<std::vector<int>> CholeskySolver::partition_elimination_tree(const s
   }
   for (auto& g : groups) std::sort(g.begin(), g.end());  // ascending: a topological order
   return groups;
-}
-
-void CholeskySolver::solve_in_place(double* B, double* y) const {
-  for (int i = 0; i < n_; ++i)
-    for (int c = 0; c < 3; ++c) y[3 * i + c] = B[3 * perm_[i] + c];
-  solve_ordered_in_place(y);
-  for (int i = 0; i < n_; ++i)
-    for (int c = 0; c < 3; ++c) B[3 * perm_[i] + c] = y[3 * i + c];
 }
 
 void CholeskySolver::solve_ordered_in_place(double* y) const {

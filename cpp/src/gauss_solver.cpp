@@ -309,15 +309,13 @@ void GaussSolver::factor() {
 
   // The lower triangle of L_ff, built column by column from the edge list (sorted by (lo, hi), and
   // the numbering of unknowns follows the vertices'), with the fixed neighbours moved to the rhs.
-  std::vector<double> diagonal(n, 0.0), edge_w(topo_.edges.size(), 0.0);
+  std::vector<double> diagonal(n, 0.0);
   fixed_rhs_.assign(n, Vector3d::Zero());
-  for (size_t f = 0; f < topo_.faces.size(); ++f)
-    for (int k = 0; k < 3; ++k) edge_w[topo_.face_edge[f][k]] += slot_weight_[f][k];
   std::vector<int> col_count(n, 1);  // the diagonal
   for (size_t e = 0; e < topo_.edges.size(); ++e) {
     const int a = topo_.edges[e][0], b = topo_.edges[e][1];
     const int ua = unknown_of_vertex_[a], ub = unknown_of_vertex_[b];
-    const double w = edge_w[e];
+    const double w = edge_weight_[e];
     if (ua >= 0) diagonal[ua] += w;
     if (ub >= 0) diagonal[ub] += w;
     if (ua >= 0 && ub >= 0) ++col_count[ua];  // ua < ub: entry (ub, ua) in column ua
@@ -327,12 +325,11 @@ void GaussSolver::factor() {
   if (n > 0) {
     Eigen::SparseMatrix<double> A(n, n);
     A.reserve(col_count);
-    for (int u = 0; u < n; ++u) A.insert(u, u) = 0.0;
+    for (int u = 0; u < n; ++u) A.insert(u, u) = diagonal[u];
     for (size_t e = 0; e < topo_.edges.size(); ++e) {
       const int ua = unknown_of_vertex_[topo_.edges[e][0]], ub = unknown_of_vertex_[topo_.edges[e][1]];
-      if (ua >= 0 && ub >= 0) A.insert(ub, ua) = -edge_w[e];
+      if (ua >= 0 && ub >= 0) A.insert(ub, ua) = -edge_weight_[e];
     }
-    for (int u = 0; u < n; ++u) A.coeffRef(u, u) = diagonal[u];
     A.makeCompressed();
     cholesky_.factor(A);
   }

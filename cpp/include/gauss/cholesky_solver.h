@@ -18,11 +18,9 @@ class CholeskySolver {
   // A: symmetric positive definite n by n (only the lower triangle is read).
   // Throws std::runtime_error if A is not numerically positive definite.
   void factor(const Eigen::SparseMatrix<double>& A);
-  // Solves A X = B in place; B: n by 3, row-major (x, y, z of one unknown are adjacent).
-  // `work` must hold n*3 doubles; no allocation happens here.
-  void solve_in_place(double* B, double* work) const;
-  // The same with B already in elimination order: row position(i) holds unknown i. Callers that
-  // assemble the right-hand side anyway save the two permuting passes.
+  // Solves A X = B in place; B: n by 3, row-major (x, y, z of one unknown adjacent), in elimination
+  // order: row position(i) holds unknown i (callers assemble B in that order, which saves two
+  // permuting passes). No allocation happens here.
   void solve_ordered_in_place(double* Y) const;
   int position(int i) const { return new_of_old_[i]; }
   int size() const { return n_; }
@@ -30,8 +28,7 @@ class CholeskySolver {
 
  private:
   int n_ = 0;
-  std::vector<int> perm_;        // work[i] = B[perm_[i]]
-  std::vector<int> new_of_old_;  // inverse of perm_
+  std::vector<int> new_of_old_;  // unknown -> row in elimination order
   // The strictly lower part of L twice: by rows for the forward sweep and by columns (= rows of L^T)
   // for the backward sweep, so both sweeps gather into registers instead of scattering to memory.
   std::vector<int> row_start_, row_cols_;

@@ -25,7 +25,7 @@ struct MeshTopology {
   int num_components = 0;
 };
 
-// V is only used for its row count. F: #F_in by 3 indices (row-major, int64 for generality).
+// F: #F_in by 3 vertex indices (row-major, int64 for generality), each in [0, num_vertices).
 // Throws std::invalid_argument if an index is out of range or no usable face remains.
 MeshTopology build_mesh_topology(int num_vertices, const int64_t* F, int num_input_faces);
 
