@@ -54,6 +54,7 @@ class Session:
         self.solver = self._make_solver(settings)
         # The solver writes its result straight into this buffer every step.
         self.result = np.empty_like(self.arrays.coords)
+        self.finite = np.empty(self.result.shape, bool)  # preallocated: a tick allocates nothing
         self.steps = 0
         self.step_ms = []
         self.target.prepare()  # first change to the object: everything above succeeded
@@ -119,7 +120,7 @@ class Session:
         self.step_ms.append((time.perf_counter() - start) * 1000.0 / max(count, 1))
         self.steps += count
         self.solver.vertices_into(self.result)
-        if not np.isfinite(self.result).all():  # never write NaN into the artist's mesh
+        if not np.isfinite(self.result, out=self.finite).all():  # never write NaN into the artist's mesh
             raise SettingsError("The solver produced invalid positions (the mesh may have "
                                 "degenerate faces); try a larger Lambda or fix the mesh")
         self.target.write(self.result)

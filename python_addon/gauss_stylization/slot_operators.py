@@ -12,6 +12,23 @@ def _settings(context):
     return obj.gauss_stylization if obj is not None and obj.type == 'MESH' else None
 
 
+def _append(owner, collection, index_attr):
+    """Add an item to a UI list's collection and make it the active one."""
+    item = collection.add()
+    setattr(owner, index_attr, len(collection) - 1)
+    return item
+
+
+def _remove_active(owner, collection, index_attr):
+    """Remove a UI list's active item; the next one (or the new last one) becomes active."""
+    index = getattr(owner, index_attr)
+    if not 0 <= index < len(collection):
+        return {'CANCELLED'}
+    collection.remove(index)
+    setattr(owner, index_attr, min(index, len(collection) - 1))
+    return {'FINISHED'}
+
+
 class _SlotOperator:
     bl_options = {'REGISTER', 'UNDO', 'INTERNAL'}
 
@@ -27,9 +44,8 @@ class OBJECT_OT_gauss_style_add(_SlotOperator, bpy.types.Operator):
 
     def execute(self, context):
         settings = _settings(context)
-        slot = settings.styles.add()
+        slot = _append(settings, settings.styles, "active_style_index")
         slot.name = "Style %d" % len(settings.styles)
-        settings.active_style_index = len(settings.styles) - 1
         return {'FINISHED'}
 
 
@@ -40,12 +56,7 @@ class OBJECT_OT_gauss_style_remove(_SlotOperator, bpy.types.Operator):
 
     def execute(self, context):
         settings = _settings(context)
-        index = settings.active_style_index
-        if not 0 <= index < len(settings.styles):
-            return {'CANCELLED'}
-        settings.styles.remove(index)
-        settings.active_style_index = min(index, len(settings.styles) - 1)
-        return {'FINISHED'}
+        return _remove_active(settings, settings.styles, "active_style_index")
 
 
 class OBJECT_OT_gauss_style_move(_SlotOperator, bpy.types.Operator):
@@ -88,8 +99,7 @@ class OBJECT_OT_gauss_normal_add(_NormalOperator, bpy.types.Operator):
 
     def execute(self, context):
         slot = _active_custom_slot(context)
-        slot.custom_normals.add().vector = (0.0, 0.0, 1.0)
-        slot.active_normal_index = len(slot.custom_normals) - 1
+        _append(slot, slot.custom_normals, "active_normal_index").vector = (0.0, 0.0, 1.0)
         return {'FINISHED'}
 
 
@@ -100,12 +110,7 @@ class OBJECT_OT_gauss_normal_remove(_NormalOperator, bpy.types.Operator):
 
     def execute(self, context):
         slot = _active_custom_slot(context)
-        index = slot.active_normal_index
-        if not 0 <= index < len(slot.custom_normals):
-            return {'CANCELLED'}
-        slot.custom_normals.remove(index)
-        slot.active_normal_index = min(index, len(slot.custom_normals) - 1)
-        return {'FINISHED'}
+        return _remove_active(slot, slot.custom_normals, "active_normal_index")
 
 
 class OBJECT_OT_gauss_normals_from_faces(_NormalOperator, bpy.types.Operator):
