@@ -70,7 +70,10 @@ def import_obj(relative):
 
 
 def coords(obj):
-    mesh = obj.data
+    return mesh_coords(obj.data)
+
+
+def mesh_coords(mesh):
     out = np.empty((len(mesh.vertices), 3), np.float32)
     mesh.vertices.foreach_get("co", out.reshape(-1))
     return out

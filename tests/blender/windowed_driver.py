@@ -22,6 +22,8 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, HERE)
+from helpers import coords, key_coords, mesh_coords  # noqa: E402  (the same measurements as headless)
 # GAUSS_WINDOWED_MESH (relative to shared/meshes) runs the scenario on another mesh,
 # e.g. bunny/bun_zipper_35947.obj to see live tick times on 35K vertices.
 MESH = os.path.join(REPO, "..", "shared", "meshes",
@@ -90,22 +92,6 @@ def press(event_type, x, y, **modifiers):
     win.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
     win.event_simulate(type=event_type, value='PRESS', x=x, y=y, **modifiers)
     win.event_simulate(type=event_type, value='RELEASE', x=x, y=y, **modifiers)
-
-
-def coords(obj):
-    return mesh_coords(obj.data)
-
-
-def mesh_coords(mesh):
-    out = np.empty((len(mesh.vertices), 3), np.float32)
-    mesh.vertices.foreach_get("co", out.reshape(-1))
-    return out
-
-
-def key_coords(key):
-    out = np.empty((len(key.data), 3), np.float32)
-    key.data.foreach_get("co", out.reshape(-1))
-    return out
 
 
 def shape(obj):

@@ -2,14 +2,10 @@
 import numpy as np
 
 
-def icosphere(levels=2):
-    t = (1.0 + 5 ** 0.5) / 2.0
-    V = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
-         (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
-    V = [np.array(v, float) / np.linalg.norm(v) for v in V]
-    F = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4),
-         (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8),
-         (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+def subdivided_sphere(V, F, levels):
+    """Split every triangle in four `levels` times, pushing new vertices onto the unit sphere."""
+    V = [np.asarray(v, float) / np.linalg.norm(v) for v in V]
+    F = [tuple(f) for f in F]
     for _ in range(levels):
         mid = {}
 
@@ -27,6 +23,16 @@ def icosphere(levels=2):
             G += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
         F = G
     return np.array(V), np.array(F, dtype=np.int64)
+
+
+def icosphere(levels=2):
+    t = (1.0 + 5 ** 0.5) / 2.0
+    V = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
+         (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    F = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4),
+         (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8),
+         (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    return subdivided_sphere(V, F, levels)
 
 
 def read_obj(path):

@@ -15,31 +15,18 @@ import pytest
 REPO = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(pathlib.Path(os.environ.get("GAUSS_BUILD_DIR", REPO / "build")) / "python"))
 import gauss_core  # noqa: E402
+from meshes import subdivided_sphere  # noqa: E402
 
 
 def lumpy_sphere(levels=2):
     """A subdivided octahedron pushed onto a squashed, turned sphere: closed, oriented, not symmetric."""
-    V = [np.array(v, float) for v in [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]]
-    F = [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)]
-    for _ in range(levels):
-        mid, G = {}, []
-
-        def midpoint(a, b):
-            key = (min(a, b), max(a, b))
-            if key not in mid:
-                p = V[a] + V[b]
-                V.append(p / np.linalg.norm(p))
-                mid[key] = len(V) - 1
-            return mid[key]
-
-        for a, b, c in F:
-            ab, bc, ca = midpoint(a, b), midpoint(b, c), midpoint(c, a)
-            G += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
-        F = G
-    V = np.array(V) * [1.1, 0.9, 0.7]
+    V, F = subdivided_sphere([(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)],
+                             [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)],
+                             levels)
+    V = V * [1.1, 0.9, 0.7]
     c, s = np.cos(0.4), np.sin(0.4)
     V = V @ np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]).T @ np.array([[1, 0, 0], [0, c, -s], [0, s, c]]).T
-    return np.ascontiguousarray(V), np.array(F, dtype=np.int64)
+    return np.ascontiguousarray(V), F
 
 
 V0, F0 = lumpy_sphere()
