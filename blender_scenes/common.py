@@ -62,7 +62,7 @@ def load_addon(build_dir):
     import gauss_stylization
     gauss_stylization.register()
     core = gauss_stylization.native.core()  # fail now, with the add-on's message, if the .so is wrong
-    if os.environ.get("GAUSS_THREADS"):  # solver threads (default: OpenMP's choice, one per core)
+    if os.environ.get("GAUSS_THREADS"):  # solver threads (default: one per core)
         core.set_num_threads(int(os.environ["GAUSS_THREADS"]))
     _loaded = True
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs gauss_bench on the issue's reference meshes (cube style, lambda 4, sigma 4, 1 ADMM round) with
 # 2 threads and prints a Markdown table of the medians. Needs ../shared/meshes and a built build/.
-# Measure on an otherwise idle machine: OpenMP barriers suffer badly from competing processes.
+# Measure on an otherwise idle machine: parallel loops suffer badly from competing processes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 meshes=("${@:-../shared/meshes/bunny/bun_zipper_35947.obj ../shared/meshes/armadillo/armadillo_libigl_43243.obj}")

@@ -10,13 +10,10 @@
 #include <string>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "gauss/alignment_share.h"
 #include "gauss/gauss_solver.h"
 #include "gauss/mesh_io.h"
+#include "gauss/parallel.h"
 #include "gauss/presets.h"
 
 namespace {
@@ -56,10 +53,8 @@ int main(int argc, char** argv) {
     else return usage();
   }
   try {
-#ifdef _OPENMP
-    if (threads > 0) omp_set_num_threads(threads);
-    std::printf("threads: %d\n", omp_get_max_threads());
-#endif
+    if (threads > 0) gauss::parallel::set_max_threads(threads);
+    std::printf("threads: %d\n", gauss::parallel::max_threads());
     gauss::TriangleMesh mesh = gauss::read_mesh(mesh_path);
     std::printf("mesh: %s (%d vertices, %d faces)\n", mesh_path.c_str(), mesh.num_vertices(), mesh.num_faces());
     gauss::StyleParams params = gauss::preset_style(style);

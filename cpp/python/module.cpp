@@ -11,11 +11,9 @@
 #include <string>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "gauss/gauss_solver.h"
+#include "gauss/parallel.h"
 #include "gauss/presets.h"
 
 namespace py = pybind11;
@@ -222,17 +220,10 @@ PYBIND11_MODULE(gauss_core, m) {
 
   m.def("set_num_threads", [](int n) {
         if (n < 1) throw py::value_error("the number of threads must be >= 1");
-#ifdef _OPENMP
-        omp_set_num_threads(n);
-#endif
-      }, py::arg("n"), "Sets how many OpenMP threads steps use (results do not depend on it).");
-  m.def("get_num_threads", []() {
-#ifdef _OPENMP
-        return omp_get_max_threads();
-#else
-        return 1;
-#endif
-      }, "Number of OpenMP threads steps use.");
+        gauss::parallel::set_max_threads(n);
+      }, py::arg("n"), "Sets how many threads steps use (results do not depend on it).");
+  m.def("get_num_threads", []() { return gauss::parallel::max_threads(); },
+        "Number of threads steps use (default: GAUSS_THREADS or OMP_NUM_THREADS, else one per core).");
 
   py::class_<Style>(m, "Style", R"doc(
 A preference function g on the Gauss sphere with its own sigma (concentration) and mu (strength).

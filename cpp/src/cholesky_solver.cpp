@@ -6,9 +6,7 @@
 #include <queue>
 #include <stdexcept>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "gauss/parallel.h"
 
 namespace gauss {
 namespace {
@@ -176,13 +174,13 @@ void CholeskySolver::factor(const Eigen::SparseMatrix<double>& A) {
     return bad;
   };
   const int parts = static_cast<int>(part_start_.size()) - 1;
-#pragma omp parallel if (parts > 1 && n > 4096) reduction(+ : failed)
-  {
+  std::vector<int> part_failed(parts, 0);
+  parallel::for_tasks(parts, n > 4096, [&](int t) {
     std::vector<double> Y(n, 0.0);
     std::vector<int> mark(n, -1), pattern(n);
-#pragma omp for schedule(static, 1)
-    for (int t = 0; t < parts; ++t) failed += factor_rows(part_start_[t], part_start_[t + 1], Y, mark, pattern);
-  }
+    part_failed[t] = factor_rows(part_start_[t], part_start_[t + 1], Y, mark, pattern);
+  });
+  for (int f : part_failed) failed += f;
   {
     std::vector<double> Y(n, 0.0);
     std::vector<int> mark(n, -1), pattern(n);
@@ -212,8 +210,9 @@ void CholeskySolver::factor(const Eigen::SparseMatrix<double>& A) {
         row_values_[slot] = col_values_[p];
       }
   };
-#pragma omp parallel for schedule(static, 1) if (parts > 1 && n > 4096)
-  for (int t = 0; t < parts; ++t) fill_rows(part_start_[t], part_start_[t + 1], part_start_[t], part_start_[t + 1]);
+  parallel::for_tasks(parts, n > 4096, [&](int t) {
+    fill_rows(part_start_[t], part_start_[t + 1], part_start_[t], part_start_[t + 1]);
+  });
   fill_rows(0, n, top_begin, n);
 }
 
@@ -308,16 +307,16 @@ void CholeskySolver::solve_ordered_in_place(double* y) const {
   };
   const int parts = static_cast<int>(part_start_.size()) - 1;
   // Forward (L y = b): the subtrees, one range per thread, then the rows above the cut.
-#pragma omp parallel for schedule(static, 1) if (parts > 1 && n_ > 4096)
-  for (int t = 0; t < parts; ++t)
+  parallel::for_tasks(parts, n_ > 4096, [&](int t) {
     for (int i = part_start_[t]; i < part_start_[t + 1]; ++i) forward_row(i);
+  });
   for (int i = part_start_.back(); i < n_; ++i) forward_row(i);
   // Backward (D L^T x = y): the rows above the cut first, then the subtrees; every row a row reads
   // lies above it in the tree and is final by then.
   for (int j = n_ - 1; j >= part_start_.back(); --j) backward_row(j);
-#pragma omp parallel for schedule(static, 1) if (parts > 1 && n_ > 4096)
-  for (int t = 0; t < parts; ++t)
+  parallel::for_tasks(parts, n_ > 4096, [&](int t) {
     for (int j = part_start_[t + 1] - 1; j >= part_start_[t]; --j) backward_row(j);
+  });
 }
 
 }  // namespace gauss

@@ -7,11 +7,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "gauss/closest_rotation.h"
+#include "gauss/parallel.h"
 #include "gauss/presets.h"
 #include "gauss/spatial_order.h"
 
@@ -343,8 +341,7 @@ void GaussSolver::face_pass() {
   const int nF = static_cast<int>(topo_.faces.size());
   const double lam = lambda_;
   const double zero[3] = {0, 0, 0};
-#pragma omp parallel for schedule(static) if (nF > kParallelMin)
-  for (int f = 0; f < nF; ++f) {
+  parallel::for_each(nF, kParallelMin, [&](int f) {
     const auto& t = topo_.faces[f];
     Vector3d e[3];
     for (int k = 0; k < 3; ++k) e[k] = X_[t[(k + 1) % 3]] - X_[t[k]];
@@ -365,19 +362,18 @@ void GaussSolver::face_pass() {
     cov.noalias() += e[1] * slot_rest_[f][1].transpose();
     cov.noalias() += e[2] * slot_rest_[f][2].transpose();
     face_cov_[f] = cov;
-  }
+  });
 }
 
 void GaussSolver::fit_rotations() {
   const int nV = topo_.num_vertices;
-#pragma omp parallel for schedule(static) if (nV > kParallelMin)
-  for (int v = 0; v < nV; ++v) {
+  parallel::for_each(nV, kParallelMin, [&](int v) {
     const int begin = topo_.vertex_corner_start[v], end = topo_.vertex_corner_start[v + 1];
-    if (begin == end) continue;
+    if (begin == end) return;
     Matrix3d M = Matrix3d::Zero();
     for (int i = begin; i < end; ++i) M += face_cov_[topo_.vertex_corners[i] / 3];
     rotation_[v] = closest_rotation_warm(M, rotation_q_[v]);
-  }
+  });
 }
 
 void GaussSolver::admm_round(bool first_round) {
@@ -386,9 +382,8 @@ void GaussSolver::admm_round(bool first_round) {
   // Normals (Eqs. 17-22): the first round's update happened in face_pass(). Later rounds start with
   // the previous round's dual update (Eq. 25).
   if (!first_round) {
-#pragma omp parallel for schedule(static) if (nF > kParallelMin)
-    for (int f = 0; f < nF; ++f) {
-      if (face_mu_[f] == 0.0) continue;
+    parallel::for_each(nF, kParallelMin, [&](int f) {
+      if (face_mu_[f] == 0.0) return;
       const Vector3d n = normal_star_[f];
       const auto& fe = topo_.face_edge[f];
       const Vector3d es[3] = {edge_star_[fe[0]], edge_star_[fe[1]], edge_star_[fe[2]]};
@@ -396,12 +391,11 @@ void GaussSolver::admm_round(bool first_round) {
       const double lw[3] = {lam * slot_edge_weight_[f][0], lam * slot_edge_weight_[f][1],
                             lam * slot_edge_weight_[f][2]};
       normal_star_[f] = newton_normal(styles_[face_style_[f]], n, es, lw, dual_[f].data());
-    }
+    });
   }
   // Edges (Eq. 24): (I + sum mu n n^T) e* = e - sum mu u n over the styled faces of the edge.
   const int nE = static_cast<int>(topo_.edges.size());
-#pragma omp parallel for schedule(static) if (nE > kParallelMin)
-  for (int e = 0; e < nE; ++e) {
+  parallel::for_each(nE, kParallelMin, [&](int e) {
     const Vector3d cur = X_[topo_.edges[e][1]] - X_[topo_.edges[e][0]];
     // Collect the styled faces (usually one or two; more on non-manifold edges).
     int count = 0;
@@ -437,14 +431,13 @@ void GaussSolver::admm_round(bool first_round) {
       Vector3d x;
       edge_star_[e] = solve_symmetric3(A, b, x) ? x : cur;  // A >= I: always solvable
     }
-  }
+  });
 }
 
 void GaussSolver::assemble_rhs() {
   const int nF = static_cast<int>(topo_.faces.size());
   const double lam = lambda_, inv = 1.0 / (1.0 + lambda_);
-#pragma omp parallel for schedule(static) if (nF > kParallelMin)
-  for (int f = 0; f < nF; ++f) {
+  parallel::for_each(nF, kParallelMin, [&](int f) {
     const auto& t = topo_.faces[f];
     // Spokes and rims: every vertex of the face rotates the face's three edges, so the ARAP target
     // of an edge is the mean rotation of the face applied to its rest vector (Eq. 27).
@@ -456,10 +449,9 @@ void GaussSolver::assemble_rhs() {
     }
     // Corner k is the head of slot k-1 and the tail of slot k.
     for (int k = 0; k < 3; ++k) corner_rhs_[f][k] = d[(k + 2) % 3] - d[k];
-  }
+  });
   const int n = static_cast<int>(vertex_of_unknown_.size());
-#pragma omp parallel for schedule(static) if (n > kParallelMin)
-  for (int u = 0; u < n; ++u) {
+  parallel::for_each(n, kParallelMin, [&](int u) {
     const int v = vertex_of_unknown_[u];
     Vector3d b = fixed_rhs_[u];
     for (int i = topo_.vertex_corner_start[v]; i < topo_.vertex_corner_start[v + 1]; ++i) {
@@ -470,14 +462,15 @@ void GaussSolver::assemble_rhs() {
     r[0] = b.x();
     r[1] = b.y();
     r[2] = b.z();
-  }
+  });
 }
 
 void GaussSolver::solve_and_recenter() {
   const int n = static_cast<int>(vertex_of_unknown_.size());
   if (n > 0) cholesky_.solve_ordered_in_place(rhs_.data());
-#pragma omp parallel for schedule(static) if (n > kParallelMin)
-  for (int u = 0; u < n; ++u) X_[vertex_of_unknown_[u]] = Vector3d(&rhs_[3 * static_cast<size_t>(cholesky_.position(u))]);
+  parallel::for_each(n, kParallelMin, [&](int u) {
+    X_[vertex_of_unknown_[u]] = Vector3d(&rhs_[3 * static_cast<size_t>(cholesky_.position(u))]);
+  });
   // Anchors went into the solve at their rest positions; translate each free component so that its
   // centroid stays where the rest pose had it.
   const int nV = topo_.num_vertices;
@@ -488,20 +481,16 @@ void GaussSolver::solve_and_recenter() {
     if (unknown_of_vertex_[v] < 0) X_[v] = rest_[v];  // the anchor
     component_sum_[c] += X_[v];
   }
-#pragma omp parallel for schedule(static) if (nV > kParallelMin)
-  for (int v = 0; v < nV; ++v) {
+  parallel::for_each(nV, kParallelMin, [&](int v) {
     const int c = topo_.component[v];
-    if (c < 0 || !component_free_[c]) continue;
+    if (c < 0 || !component_free_[c]) return;
     X_[v] += component_rest_center_[c] - component_sum_[c] / component_size_[c];
-  }
+  });
 }
 
 void GaussSolver::step() {
-#ifdef _OPENMP
-  const int max_threads = omp_get_max_threads();
-  const int threads = tuner_.next(max_threads);
-  omp_set_num_threads(threads);  // this thread's setting only; restored below
-#endif
+  const int threads = tuner_.next(parallel::max_threads());
+  const parallel::ScopedThreads scoped(threads);
   const auto start = Clock::now();
   auto t0 = start;
   face_pass();
@@ -521,11 +510,8 @@ void GaussSolver::step() {
   solve_and_recenter();
   timings_.solve = ms_since(t0);
   ++step_count_;
-#ifdef _OPENMP
   tuner_.record(threads, ms_since(start));
   timings_.threads = threads;
-  omp_set_num_threads(max_threads);
-#endif
 }
 
 void GaussSolver::reset() {
@@ -559,10 +545,9 @@ double GaussSolver::arap_energy() const {
   // current mesh. A read-out, not on the step's path: it recomputes what it needs.
   const int nV = topo_.num_vertices;
   std::vector<double> per_vertex(nV, 0.0);
-#pragma omp parallel for schedule(static) if (nV > kParallelMin)
-  for (int v = 0; v < nV; ++v) {
+  parallel::for_each(nV, kParallelMin, [&](int v) {
     const int begin = topo_.vertex_corner_start[v], end = topo_.vertex_corner_start[v + 1];
-    if (begin == end) continue;
+    if (begin == end) return;
     Matrix3d M = Matrix3d::Zero();
     for (int i = begin; i < end; ++i) {
       const int f = topo_.vertex_corners[i] / 3;
@@ -581,7 +566,7 @@ double GaussSolver::arap_energy() const {
       }
     }
     per_vertex[v] = sum;
-  }
+  });
   double total = 0;  // sequential sum: identical for any thread count
   for (double e : per_vertex) total += e;
   return total;

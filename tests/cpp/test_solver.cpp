@@ -1,5 +1,4 @@
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -7,6 +6,7 @@
 
 #include "gauss/alignment_share.h"
 #include "gauss/gauss_solver.h"
+#include "gauss/parallel.h"
 #include "gauss/presets.h"
 #include "test_meshes.h"
 
@@ -250,12 +250,12 @@ TEST(GaussSolver, LiveEditsDoNotRefactor) {
 TEST(GaussSolver, OneAndTwoThreadsAreBitIdentical) {
   // 10242 vertices, 20480 faces: above the size where the loops go parallel.
   TriangleMesh sphere = gauss_test::icosphere(5);
-  const int saved = omp_get_max_threads();
-  omp_set_num_threads(1);
+  const int saved = gauss::parallel::max_threads();
+  gauss::parallel::set_max_threads(1);
   const std::vector<double> one = run(sphere, style("icosahedron"), 10);
-  omp_set_num_threads(2);
+  gauss::parallel::set_max_threads(2);
   const std::vector<double> two = run(sphere, style("icosahedron"), 10);
-  omp_set_num_threads(saved);
+  gauss::parallel::set_max_threads(saved);
   ASSERT_EQ(one.size(), two.size());
   EXPECT_GT(max_distance(one, sphere.V), 1e-3);  // it did stylize
   for (size_t i = 0; i < one.size(); ++i) ASSERT_EQ(one[i], two[i]) << i;  // bit for bit

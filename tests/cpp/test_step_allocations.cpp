@@ -42,7 +42,7 @@ TEST(StepAllocations, StepsDoNotAllocate) {
   fs[5] = -1;
   s.set_face_styles(fs.data(), m.num_faces());
   s.set_admm_iterations(2);
-  for (int i = 0; i < 3; ++i) s.step();  // warm-up: the OpenMP runtime sets up its thread team
+  for (int i = 0; i < 3; ++i) s.step();  // warm-up: the thread pool starts its workers
   const long before = g_allocations.load();
   for (int i = 0; i < 5; ++i) s.step();
   EXPECT_EQ(g_allocations.load() - before, 0);

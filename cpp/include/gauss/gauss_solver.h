@@ -30,7 +30,7 @@ struct StepTimings {  // milliseconds spent in each phase of the last step
   // faces: initialization with the first ADMM round's normal update; admm: the edge update and any
   // later rounds; rhs: Eq. 27's right-hand side; solve: the triangular solves and re-centring.
   double faces = 0, rotations = 0, admm = 0, rhs = 0, solve = 0;
-  int threads = 1;  // OpenMP threads the step ran on (see thread_tuner.h)
+  int threads = 1;  // threads the step ran on (see thread_tuner.h and parallel.h)
 };
 
 class GaussSolver {
