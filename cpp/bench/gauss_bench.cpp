@@ -15,6 +15,7 @@
 #include "gauss/mesh_io.h"
 #include "gauss/parallel.h"
 #include "gauss/presets.h"
+#include "gauss/settings.h"
 
 namespace {
 
@@ -35,9 +36,11 @@ int usage() {
 
 int main(int argc, char** argv) {
   if (argc < 2) return usage();
-  std::string mesh_path = argv[1], style = "cube", out_path;
-  double lambda = 4, sigma = 4, mu = 1;
-  int steps = 50, admm = 1, threads = 0;
+  std::string mesh_path = argv[1], style = gauss::settings::default_preset, out_path;
+  namespace settings = gauss::settings;
+  double lambda = settings::lambda.default_value, sigma = settings::sigma.default_value,
+         mu = settings::mu.default_value;
+  int steps = 50, admm = static_cast<int>(settings::admm_iterations.default_value), threads = 0;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (i + 1 >= argc) return usage();

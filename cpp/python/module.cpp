@@ -15,8 +15,10 @@
 #include "gauss/gauss_solver.h"
 #include "gauss/parallel.h"
 #include "gauss/presets.h"
+#include "gauss/settings.h"
 
 namespace py = pybind11;
+namespace settings = gauss::settings;
 using gauss::GaussSolver;
 using gauss::PreferenceFunction;
 using gauss::StyleParams;
@@ -124,7 +126,7 @@ class Solver {
                                             static_cast<int>(f.size() / 3), pins,
                                             targets.empty() ? nullptr : targets.data(), lam);
     solver_->set_admm_iterations(admm_iterations);
-    styles_.push_back(make_style("cube", gauss::preset_style("cube")));
+    styles_.push_back(make_style(settings::default_preset, gauss::preset_style(settings::default_preset)));
   }
 
   void set_styles(const std::vector<Style>& styles) {
@@ -217,6 +219,19 @@ PYBIND11_MODULE(gauss_core, m) {
   py::list presets;
   for (const std::string& n : gauss::preset_names()) presets.append(n);
   m.attr("PRESETS") = py::tuple(presets);
+  py::dict defaults, limits;
+  for (const gauss::Setting* setting : settings::all) {
+    if (setting->integer) {
+      defaults[setting->name] = static_cast<long>(setting->default_value);
+      limits[setting->name] = py::make_tuple(static_cast<long>(setting->min), static_cast<long>(setting->max));
+    } else {
+      defaults[setting->name] = setting->default_value;
+      limits[setting->name] = py::make_tuple(setting->min, setting->max);
+    }
+  }
+  defaults["preset"] = settings::default_preset;
+  m.attr("DEFAULTS") = defaults;
+  m.attr("LIMITS") = limits;
 
   m.def("set_num_threads", [](int n) {
         if (n < 1) throw py::value_error("the number of threads must be >= 1");
@@ -228,7 +243,8 @@ PYBIND11_MODULE(gauss_core, m) {
   py::class_<Style>(m, "Style", R"doc(
 A preference function g on the Gauss sphere with its own sigma (concentration) and mu (strength).
 
-Style(normals=None, *, sigma=4.0, mu=1.0, rotation=None, axis=None, ring_offsets=(), axis_contribution=0.5)
+Style(normals=None, *, sigma, mu, rotation=None, axis=None, ring_offsets=(), axis_contribution)
+  (defaults and ranges of sigma, mu, axis_contribution: DEFAULTS and LIMITS)
   normals: (K, 3) preferred normals (normalized here); may be None if ring_offsets are given.
   axis, ring_offsets: circles x . axis = d on the Gauss sphere (cylinder d = 0, cone d != 0).
   axis_contribution: weight of the discrete normals relative to the rings (only with rings).
@@ -249,9 +265,9 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
              p.axis_contribution = axis_contribution;
              return make_style("custom", p);
            }),
-           py::arg("normals") = py::none(), py::kw_only(), py::arg("sigma") = 4.0, py::arg("mu") = 1.0,
-           py::arg("rotation") = py::none(), py::arg("axis") = py::none(), py::arg("ring_offsets") = py::none(),
-           py::arg("axis_contribution") = 0.5)
+           py::arg("normals") = py::none(), py::kw_only(), py::arg("sigma") = settings::sigma.default_value,
+           py::arg("mu") = settings::mu.default_value, py::arg("rotation") = py::none(), py::arg("axis") = py::none(),
+           py::arg("ring_offsets") = py::none(), py::arg("axis_contribution") = settings::axis_contribution.default_value)
       .def_static("preset", [](const std::string& name, double sigma, double mu, const py::object& rotation,
                                double axis_contribution) {
              StyleParams p = gauss::preset_style(name);
@@ -261,8 +277,8 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
              p.axis_contribution = axis_contribution;
              return make_style(name, p);
            },
-           py::arg("name"), py::arg("sigma") = 4.0, py::arg("mu") = 1.0, py::arg("rotation") = py::none(),
-           py::arg("axis_contribution") = 0.5,
+           py::arg("name"), py::arg("sigma") = settings::sigma.default_value, py::arg("mu") = settings::mu.default_value,
+           py::arg("rotation") = py::none(), py::arg("axis_contribution") = settings::axis_contribution.default_value,
            "A named style (see PRESETS) with the given sigma, mu, orientation and axis contribution.")
       .def_property_readonly("name", [](const Style& s) { return s.name; }, "Preset name or 'custom'.")
       .def_property_readonly("normals", [](const Style& s) { return to_array(s.g->normals()); },
@@ -326,14 +342,15 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
 Gauss stylization of one triangle mesh. The constructor does the set-up (normalization, cotangent
 weights, topology, sparse Cholesky factorization); step() runs Algorithm 1 of the paper.
 
-Solver(V, F, pinned=None, pin_positions=None, lam=4.0, admm_iterations=1)
+Solver(V, F, pinned=None, pin_positions=None, lam, admm_iterations)  (defaults and ranges: DEFAULTS, LIMITS)
   V: (#V, 3) float32/float64 coordinates.  F: (#F, 3) int32/int64 triangle indices.
   pinned: (#P,) vertex indices that keep their position; pin_positions: (#P, 3) targets
-  (default: their rest positions).  lam: lambda >= 0.  admm_iterations: ADMM rounds per step.
-By default one cube style (sigma 4, mu 1) applies to every face.)doc")
+  (default: their rest positions).  lam: lambda.  admm_iterations: ADMM rounds per step.
+By default one style, DEFAULTS['preset'] with the default sigma and mu, applies to every face.)doc")
       .def(py::init<const py::object&, const py::object&, const py::object&, const py::object&, double, int>(),
            py::arg("V"), py::arg("F"), py::arg("pinned") = py::none(), py::arg("pin_positions") = py::none(),
-           py::arg("lam") = 4.0, py::arg("admm_iterations") = 1)
+           py::arg("lam") = settings::lambda.default_value,
+           py::arg("admm_iterations") = static_cast<int>(settings::admm_iterations.default_value))
       .def("set_styles", &Solver::set_styles, py::arg("styles"),
            "Replaces the style list (takes effect at the next step, no re-factorization).")
       .def("set_style", &Solver::set_style, py::arg("index"), py::arg("style"), "Replaces one style.")
@@ -347,7 +364,7 @@ By default one cube style (sigma 4, mu 1) applies to every face.)doc")
                     "lambda (>= 0): how strongly edges follow the preferred normals.")
       .def_property("admm_iterations", [](Solver& s) { return s.core().admm_iterations(); },
                     [](Solver& s, int n) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_admm_iterations(n); },
-                    "ADMM rounds per step (1 to 1000).")
+                    "ADMM rounds per step (range: LIMITS['admm_iterations']).")
       .def("step", &Solver::step, py::arg("n") = 1, "Runs n iterations (releases the GIL).")
       .def("reset", [](Solver& s) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().reset(); },
            "Current vertices := rest vertices; step_count := 0.")

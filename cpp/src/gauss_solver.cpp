@@ -11,6 +11,7 @@
 #include "gauss/closest_rotation.h"
 #include "gauss/parallel.h"
 #include "gauss/presets.h"
+#include "gauss/settings.h"
 #include "gauss/spatial_order.h"
 
 namespace gauss {
@@ -89,7 +90,7 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
                          double lambda) {
   if (num_vertices <= 0) throw std::invalid_argument("the mesh has no vertices");
   if (num_faces <= 0) throw std::invalid_argument("the mesh has no faces");
-  if (!(lambda >= 0 && lambda <= 1e8)) throw std::invalid_argument("lambda must be a number between 0 and 1e8");
+  settings::lambda.check(lambda);
   for (int i = 0; i < 3 * num_vertices; ++i)
     if (!std::isfinite(V[i])) {
       std::ostringstream msg;
@@ -151,7 +152,7 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   corner_rhs_.resize(nF);
   component_sum_.resize(topo_.num_components);
 
-  styles_.emplace_back(preset_style("cube"));
+  styles_.emplace_back(preset_style(settings::default_preset));
   face_style_.assign(nF, 0);
   set_pins(pinned, pin_positions);
 }
@@ -220,13 +221,13 @@ void GaussSolver::set_face_styles(const int64_t* style_of_input_face, int count)
 }
 
 void GaussSolver::set_lambda(double lambda) {
-  if (!(lambda >= 0 && lambda <= 1e8)) throw std::invalid_argument("lambda must be a number between 0 and 1e8");
+  settings::lambda.check(lambda);
   // Eq. 27: lambda only scales the right-hand side, so the factor stays valid.
   lambda_ = lambda;
 }
 
 void GaussSolver::set_admm_iterations(int n) {
-  if (n < 1 || n > 1000) throw std::invalid_argument("ADMM iterations must be between 1 and 1000");
+  settings::admm_iterations.check(n);
   admm_iterations_ = n;
 }
 

@@ -30,13 +30,9 @@ std::vector<double> solve_unit_weights(const Eigen::MatrixXd& K, const char* wha
 }  // namespace
 
 PreferenceFunction::PreferenceFunction(const StyleParams& p) : sigma_(p.sigma), mu_(p.mu) {
-  if (!std::isfinite(p.sigma) || p.sigma <= 0)
-    throw std::invalid_argument("sigma must be a finite number > 0");
-  // Above ~1e150 the edge step's 2x2 solve overflows (mu^2) to NaN; far beyond any useful strength.
-  if (!std::isfinite(p.mu) || p.mu < 0 || p.mu > 1e6)
-    throw std::invalid_argument("mu must be a number between 0 and 1e6");
-  if (!std::isfinite(p.axis_contribution) || p.axis_contribution < 0)
-    throw std::invalid_argument("axis_contribution must be a finite number >= 0");
+  settings::sigma.check(p.sigma);
+  settings::mu.check(p.mu);
+  settings::axis_contribution.check(p.axis_contribution);
   if (!p.rotation.allFinite() ||
       (p.rotation.transpose() * p.rotation - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
       p.rotation.determinant() < 0)

@@ -22,6 +22,7 @@
 #include "gauss/cholesky_solver.h"
 #include "gauss/mesh_topology.h"
 #include "gauss/preference_function.h"
+#include "gauss/settings.h"
 #include "gauss/thread_tuner.h"
 
 namespace gauss {
@@ -40,17 +41,17 @@ class GaussSolver {
   // Throws std::invalid_argument on bad input (message says what is wrong).
   GaussSolver(const double* V, int num_vertices, const int64_t* F, int num_faces,
               const std::vector<int64_t>& pinned = {}, const double* pin_positions = nullptr,
-              double lambda = 4.0);
+              double lambda = settings::lambda.default_value);
 
   // --- Styles: take effect at the next step, never re-factor. ---
-  // Default: one cube style (sigma 4, mu 1) on every face.
+  // Default: one style, settings::default_preset with default sigma and mu, on every face.
   void set_styles(std::vector<PreferenceFunction> styles);
   void set_style(int index, PreferenceFunction style);
   // Per input face: index into the style list, or -1 for an unstyled face (pure ARAP).
   void set_face_styles(const int64_t* style_of_input_face, int count);
   int num_styles() const { return static_cast<int>(styles_.size()); }
 
-  // --- Parameters that change the system matrix: re-factor. ---
+  // --- Parameters: lambda only scales Eq. 27's right-hand side, so only pins re-factor. ---
   void set_lambda(double lambda);
   double lambda() const { return lambda_; }
   void set_pins(const std::vector<int64_t>& pinned, const double* pin_positions = nullptr);
@@ -107,8 +108,8 @@ class GaussSolver {
   std::vector<int> face_style_;  // #F (solver faces), -1 = unstyled
 
   // Constraints and system.
-  double lambda_ = 4.0;
-  int admm_iterations_ = 1;
+  double lambda_ = settings::lambda.default_value;
+  int admm_iterations_ = static_cast<int>(settings::admm_iterations.default_value);
   std::vector<int64_t> pinned_;                      // internal numbering
   std::vector<int64_t> pinned_input_;                // caller's numbering
   std::vector<Eigen::Vector3d> pin_targets_;         // caller's frame

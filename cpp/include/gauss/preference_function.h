@@ -10,6 +10,8 @@
 #include <array>
 #include <vector>
 
+#include "gauss/settings.h"
+
 namespace gauss {
 
 struct StyleParams {
@@ -19,9 +21,9 @@ struct StyleParams {
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   std::vector<double> ring_offsets;
   // Weight of the discrete normals relative to the rings (only used when rings exist).
-  double axis_contribution = 0.5;
-  double sigma = 4.0;  // concentration of every term (> 0)
-  double mu = 1.0;     // weight of -mu * g in the energy (0 to 1e6)
+  double axis_contribution = settings::axis_contribution.default_value;
+  double sigma = settings::sigma.default_value;  // concentration of every term
+  double mu = settings::mu.default_value;        // weight of -mu * g in the energy
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // orientation on the Gauss sphere
 };
 

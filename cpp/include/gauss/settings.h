@@ -1,0 +1,56 @@
+#pragma once
+// Every solver setting's default and hard limits, written once.
+//
+// Everything else derives from this table: the solver's and the preference function's input checks,
+// the Python module's keyword defaults and its exports gauss_core.DEFAULTS / gauss_core.LIMITS, and
+// through those the Blender add-on's properties (default, hard range), validation and panel. The build
+// also writes the table to the add-on's core_facts.json (tools/gauss_facts.cpp), which the add-on reads
+// when the native module cannot be loaded, so saved settings still register with the right defaults.
+//
+// Limits are inclusive. They are where a setting stops being useful, kept well inside where the
+// arithmetic would overflow (lambda and mu multiply squared edge lengths; sigma is an exponent).
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace gauss {
+
+struct Setting {
+  const char* name;   // the Python name (Solver keyword / Style keyword / add-on property)
+  const char* label;  // how error messages call it
+  double default_value;
+  double min, max;
+  bool integer;
+
+  bool accepts(double v) const { return v >= min && v <= max; }  // false for NaN
+
+  // Throws std::invalid_argument naming the setting and its range unless accepts(v).
+  void check(double v) const {
+    if (accepts(v)) return;
+    std::ostringstream msg;
+    msg << label << " must be " << (integer ? "an integer" : "a number") << " between " << min << " and " << max
+        << " (got " << v << ")";
+    throw std::invalid_argument(msg.str());
+  }
+};
+
+namespace settings {
+
+// lambda of Eq. 27: how strongly edges follow the preferred normals.
+inline constexpr Setting lambda{"lam", "lambda", 4.0, 0.0, 1e4, false};
+// sigma of Eq. 9: concentration of each preferred normal's bump on the Gauss sphere.
+inline constexpr Setting sigma{"sigma", "sigma", 4.0, 1e-3, 1e3, false};
+// mu: weight of -mu * g(n_f) for a style's faces, relative to the other styles and to ARAP.
+inline constexpr Setting mu{"mu", "mu", 1.0, 0.0, 1e3, false};
+// Weight of a ring style's discrete (axis) normals relative to its rings.
+inline constexpr Setting axis_contribution{"axis_contribution", "axis_contribution", 0.5, 0.0, 1.0, false};
+// ADMM rounds per step (Algorithm 1's inner loop).
+inline constexpr Setting admm_iterations{"admm_iterations", "ADMM iterations", 1, 1, 100, true};
+
+inline constexpr const Setting* all[] = {&lambda, &sigma, &mu, &axis_contribution, &admm_iterations};
+
+// The style every face has until set_styles() says otherwise, and the add-on's default slot preset.
+inline constexpr const char* default_preset = "cube";
+
+}  // namespace settings
+}  // namespace gauss
