@@ -14,14 +14,15 @@ bl_info = {
     "category": "Mesh",
 }
 
+# Bottom of the import order first: each module imports only modules listed before it.
 if "bpy" in locals():  # F8 / script reload: reload the submodules too
     import importlib
-    for _module in (native, properties, mesh_io, styles, validation, output, rest_store,
-                    settings_io, session, operators, slot_operators, ui):
+    for _module in (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
+                    rest_store, settings_io, session, runs, viewport, operators, slot_operators, ui):
         importlib.reload(_module)
 else:
-    from . import (native, properties, mesh_io, styles, validation, output, rest_store,
-                   settings_io, session, operators, slot_operators, ui)
+    from . import (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
+                   rest_store, settings_io, session, runs, viewport, operators, slot_operators, ui)
 
 import bpy
 
@@ -32,12 +33,12 @@ def register():
     for cls in classes:
         bpy.utils.register_class(cls)
     properties.register_pointer()
-    operators.register_handlers()
+    runs.register_handlers()
 
 
 def unregister():
-    operators.unregister_handlers()
-    operators.stop_all(bpy.context)
+    runs.unregister_handlers()
+    runs.stop_all(bpy.context)
     properties.unregister_pointer()
     for cls in reversed(classes):
         bpy.utils.unregister_class(cls)

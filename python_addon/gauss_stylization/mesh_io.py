@@ -25,7 +25,7 @@ class MeshArrays:
         self.num_polygons = len(mesh.polygons)
         self.coords = np.empty((self.num_vertices, 3), np.float32)
         read_base_coords(mesh, self.coords)
-        self.triangles, self.tri_polygon = _read_loop_triangles(mesh)
+        self.triangles, self.tri_polygon = read_loop_triangles(mesh)
         self.corner_vertex, self.corner_polygon, self.polygon_sides = _read_corners(mesh)
 
     def polygon_average(self, vertex_values):
@@ -57,8 +57,8 @@ def write_key_coords(key_block, coords):
     key_block.data.foreach_set("co", coords.reshape(-1))
 
 
-def read_key_coords(key_block, num_vertices):
-    out = np.empty((num_vertices, 3), np.float32)
+def read_key_coords(key_block, num_vertices=None):
+    out = np.empty((len(key_block.data) if num_vertices is None else num_vertices, 3), np.float32)
     key_block.data.foreach_get("co", out.reshape(-1))
     return out
 
@@ -74,10 +74,12 @@ def tag_changed(mesh):
     mesh.update()
 
 
-def _read_loop_triangles(mesh):
-    # Blender < 4.1 needs an explicit call; newer versions compute them on demand.
-    if hasattr(mesh, "calc_loop_triangles"):
-        mesh.calc_loop_triangles()
+def read_loop_triangles(mesh):
+    """(#T,3) int32 vertex indices of the loop triangles (what the solver sees) and
+    (#T,) int32 polygon of each."""
+    # Loop triangles may be stale after the mesh changed until they are computed again;
+    # calc_loop_triangles() exists in every Blender the add-on supports (3.4 to 4.x).
+    mesh.calc_loop_triangles()
     count = len(mesh.loop_triangles)
     triangles = np.empty((count, 3), np.int32)
     tri_polygon = np.empty(count, np.int32)

@@ -1,27 +1,33 @@
-"""Access to the compiled solver module ``gauss_core``.
+"""Access to the compiled solver module ``gauss_core`` and to the facts it owns.
 
 The add-on must register (and show its panel) even when the native module is
 missing or was built for another Python, so that the artist sees a readable
 message instead of a traceback. Everything that needs the solver calls
 ``core()``, which raises ``NativeModuleError`` with that message.
+
+The solver owns the defaults and hard limits of its settings and the preset
+registry. ``facts()`` returns them from ``gauss_core``, or, when it cannot be
+imported, from ``core_facts.json``, which the build writes next to this file
+from the same table (cpp/include/gauss/settings.h), so the properties register
+with the same defaults, ranges and preset numbers either way.
 """
 
+import json
+import os
 import sys
+from collections import namedtuple
 
-# Used only to build the preset menu when the native module cannot be loaded;
-# the real list always comes from gauss_core.PRESETS (see docs/python_api.md).
-FALLBACK_PRESETS = (
-    "cube", "tetrahedron", "octahedron", "dodecahedron", "icosahedron",
-    "square_pyramid", "truncated_pyramid", "triangular_prism", "hexagonal_prism",
-    "plane", "cylinder", "cone", "double_cone",
-)
+from .errors import NativeModuleError
 
+FACTS_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "core_facts.json")
 
-class NativeModuleError(RuntimeError):
-    """The solver module cannot be imported."""
-
+# defaults: {name: value} (also "preset": the default preset name);
+# limits:   {name: (min, max)}, inclusive;
+# presets:  preset names; the position of each is its enum number in saved .blend files.
+Facts = namedtuple("Facts", "defaults limits presets")
 
 _core = None
+_facts = None
 
 
 def core():
@@ -40,9 +46,37 @@ def core():
     return _core
 
 
-def available_presets():
-    """Preset names of the solver, or the documented list if it cannot load."""
+def facts():
+    """The solver's DEFAULTS, LIMITS and PRESETS, from the module or its JSON copy."""
+    global _facts
+    if _facts is None:
+        try:
+            module = core()
+        except NativeModuleError as exc:
+            _facts = read_facts_file(FACTS_FILE, exc)
+        else:
+            _facts = _checked_facts(module.DEFAULTS, module.LIMITS, module.PRESETS)
+    return _facts
+
+
+def read_facts_file(path, import_error=None):
+    """Facts from a core_facts.json ({"DEFAULTS": .., "LIMITS": .., "PRESETS": ..})."""
     try:
-        return tuple(core().PRESETS)
-    except NativeModuleError:
-        return FALLBACK_PRESETS
+        with open(path, encoding="utf-8") as handle:
+            data = json.load(handle)
+        return _checked_facts(data["DEFAULTS"], data["LIMITS"], data["PRESETS"])
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise NativeModuleError(
+            "The add-on cannot read the solver's settings: %s, and %s is unreadable (%s). "
+            "Reinstall the add-on from a complete build." % (import_error or "no gauss_core module",
+                                                             path, exc)) from exc
+
+
+def _checked_facts(defaults, limits, presets):
+    limits = {name: (low, high) for name, (low, high) in dict(limits).items()}
+    presets = tuple(str(name) for name in presets)
+    defaults = dict(defaults)
+    if not presets or defaults.get("preset") not in presets or not set(limits) <= set(defaults):
+        raise ValueError("inconsistent solver facts (defaults %r, limits %r, presets %r)"
+                         % (defaults, limits, presets))
+    return Facts(defaults, limits, presets)

@@ -3,24 +3,22 @@
 import time
 
 import bpy
-from bpy.props import IntProperty, StringProperty
+from bpy.props import StringProperty
 
-from . import rest_store, settings_io
-from .native import NativeModuleError
+from . import rest_store, runs, schema, settings_io
+from .errors import NativeModuleError, SettingsError
 from .session import Session, ensure_style_slot
-from .validation import SettingsError, object_problem, poll_result
+from .validation import object_problem, poll_result
+from .viewport import existing_area, over_viewport, redraw_viewports
 
 TICK_SECONDS = 0.01
 HINT = "Enter / Left-click: keep  |  Esc / Right-click: cancel"
-
-# Objects (by pointer) with a live run, so a second Stylize or a Reset cannot
-# interfere with it. Module state, because modal operators live outside RNA.
-running = {}
+_STEPS = schema.field(schema.OBJECT, "iterations")
 
 
 def stylize_problem(context):
     problem = object_problem(context)
-    if problem is None and context.active_object.as_pointer() in running:
+    if problem is None and runs.is_running(context.active_object):
         problem = "Stylization is already running on this object"
     return problem
 
@@ -41,7 +39,7 @@ def start_session(operator, context):
         operator.report({'ERROR'}, str(exc))
         return None
     if added:
-        operator.report({'INFO'}, "No style slot yet: added a Cube style")
+        operator.report({'INFO'}, "No style slot yet: added a %s style" % obj.gauss_stylization.styles[0].name)
     return session
 
 
@@ -52,9 +50,9 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
     bl_label = "Stylize"
     bl_options = {'REGISTER', 'UNDO'}
 
-    iterations: IntProperty(
-        name="Iterations", default=100, min=0, max=100000,
-        description="Solver steps (scripts: defaults to the object's Script Steps setting)")
+    # The range and default of the object's Script Steps, which a script run defaults to.
+    iterations: _STEPS.prop({}, label="Iterations",
+                            tooltip="Solver steps (scripts: defaults to the object's Script Steps setting)")
     # Settings a kept live run ended with, so the redo panel repeats that run (JSON, see settings_io).
     settings_json: StringProperty(options={'HIDDEN', 'SKIP_SAVE'})
 
@@ -100,14 +98,14 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         if session is None:
             return {'CANCELLED'}
         self._session = session
-        # The area's address only, never a Python reference to it: see _existing_area.
+        # The area's address only, never a Python reference to it: see viewport.existing_area.
         self._area_pointer = context.area.as_pointer() if context.area else None
         self._message = "starting"
         self._tick_ms = []
         window_manager = context.window_manager
         self._timer = window_manager.event_timer_add(TICK_SECONDS, window=context.window)
         window_manager.modal_handler_add(self)
-        running[context.active_object.as_pointer()] = self
+        runs.start(context.active_object, self)
         self._show_status(context)
         return {'RUNNING_MODAL'}
 
@@ -119,7 +117,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         try:
             return self._handle_event(context, event)
         except Exception as exc:  # never leave a half-done run or a dangling timer behind
-            self._stop(context, keep=False)
+            self.stop(context, keep=False)
             self.report({'ERROR'}, "Stylize stopped, mesh restored: %s" % exc)
             return {'CANCELLED'}
 
@@ -130,15 +128,15 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             return {'PASS_THROUGH'}  # other operators may own this timer event
         if event.value != 'PRESS':
             return {'PASS_THROUGH'}
-        if event.type == 'ESC' or (event.type == 'RIGHTMOUSE' and _over_viewport(context, event)):
-            self._stop(context, keep=False)
+        if event.type == 'ESC' or (event.type == 'RIGHTMOUSE' and over_viewport(context, event)):
+            self.stop(context, keep=False)
             return {'CANCELLED'}
         if event.type in {'RET', 'NUMPAD_ENTER'} or (
-                event.type == 'LEFTMOUSE' and _over_viewport(context, event)):
+                event.type == 'LEFTMOUSE' and over_viewport(context, event)):
             if not self._session.object_alive():  # deleted since the last tick: nothing to keep
                 self._stop_object_gone(context)
                 return {'CANCELLED'}
-            self._stop(context, keep=True)
+            self.stop(context, keep=True)
             return {'FINISHED'}
         if event.type == 'TAB' or (event.type == 'Z' and (event.ctrl or event.oskey)):
             return {'RUNNING_MODAL'}  # no mode switch or undo under a live run
@@ -153,7 +151,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         if context.mode != 'OBJECT':
             # Edit Mode would overwrite a restore on exit, so keep what is there
             # and let Reset (which has the start coordinates) take it back.
-            self._stop(context, keep=True)
+            self.stop(context, keep=True)
             self.report({'WARNING'}, "Stylize stopped: the object left Object Mode. "
                                      "Use Reset in Object Mode to get the original back")
             return False
@@ -161,13 +159,13 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         problem = session.sync_settings()
         if problem is None:
             session.step()
-            _redraw_viewports(context)
+            redraw_viewports(context)
             self._tick_ms.append((time.perf_counter() - start) * 1000.0)
         self._message = "paused: " + problem if problem else None
         self._show_status(context)
         return True
 
-    def _stop(self, context, keep):
+    def stop(self, context, keep):
         """End the run: keep the result (callers check the object is alive) or restore.
 
         Runs once: Blender may still call cancel() after an undo or disabling the
@@ -186,21 +184,21 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         finally:  # even if restoring failed: leave no timer and no stale entry behind
             context.window_manager.event_timer_remove(self._timer)
             self._timer = None
-            _forget(self)
+            runs.forget(self)
             self._show_status(context, clear=True)
-            _redraw_viewports(context)
+            redraw_viewports(context)
 
     def _stop_object_gone(self, context):
-        self._stop(context, keep=False)
+        self.stop(context, keep=False)
         self.report({'WARNING'}, "Stylize stopped: the object was deleted or its mesh replaced")
 
     def cancel(self, context):
         # Blender cancels a modal operator when e.g. its window closes or a file loads.
-        self._stop(context, keep=False)
+        self.stop(context, keep=False)
 
     def _show_status(self, context, clear=False):
         text = None if clear else self._status_text()
-        area = _existing_area(self._area_pointer)
+        area = existing_area(self._area_pointer)
         if area is not None:
             area.header_text_set(text)
         if context.workspace is not None:
@@ -222,87 +220,6 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
     @property
     def session(self):
         return self._session
-
-
-def _forget(operator):
-    for key, value in list(running.items()):
-        if value is operator:
-            del running[key]
-
-
-def _existing_area(pointer):
-    """The screen area at address ``pointer`` if it still exists, else None.
-
-    Areas are not IDs: when one is freed (areas joined or closed, a file loaded)
-    Python is not told, and a kept reference would write into freed memory. So
-    the area is looked for among the live ones each time (a few dozen at most).
-    """
-    if pointer is None:
-        return None
-    for screen in bpy.data.screens:
-        for area in screen.areas:
-            if area.as_pointer() == pointer:
-                return area
-    return None
-
-
-def _redraw_viewports(context):
-    for area in context.window.screen.areas if context.window else ():
-        if area.type == 'VIEW_3D':
-            area.tag_redraw()
-
-
-def _inside(rect, x, y):
-    return rect.x <= x < rect.x + rect.width and rect.y <= y < rect.y + rect.height
-
-
-def _over_viewport(context, event):
-    """Is the mouse over a 3D viewport's drawing region (not its sidebar, header or toolbar)?
-
-    Clicks elsewhere must reach the UI, so settings can be changed while running.
-    """
-    x, y = event.mouse_x, event.mouse_y
-    for area in context.window.screen.areas:
-        if area.type != 'VIEW_3D' or not _inside(area, x, y):
-            continue
-        # Sidebar and headers overlap the main region, so they are tested first.
-        return not any(region.type != 'WINDOW' and _inside(region, x, y) for region in area.regions)
-    return False
-
-
-def stop_all(context, report=None):
-    """Restore and end every live run (add-on disabled, undo/redo mid-run)."""
-    for operator in list(running.values()):
-        operator._stop(context, keep=False)
-        if report:
-            operator.report({'WARNING'}, report)
-
-
-@bpy.app.handlers.persistent
-def _end_runs_before_undo(*_args):
-    # Ctrl+Z is swallowed during a run, but the Edit menu (or F9 redo) still
-    # reaches undo. Memory undo keeps a mesh it thinks unchanged as it is in
-    # memory, so the half-done result would stay, in no undo step, and the run
-    # would stop without restoring. Restoring first makes memory match the undo
-    # step again.
-    stop_all(bpy.context, report="Stylize cancelled by undo/redo; the mesh was restored first")
-
-
-UNDO_HANDLER_LISTS = ("undo_pre", "redo_pre")
-
-
-def register_handlers():
-    for name in UNDO_HANDLER_LISTS:
-        handlers = getattr(bpy.app.handlers, name)
-        if _end_runs_before_undo not in handlers:
-            handlers.append(_end_runs_before_undo)
-
-
-def unregister_handlers():
-    for name in UNDO_HANDLER_LISTS:
-        handlers = getattr(bpy.app.handlers, name)
-        if _end_runs_before_undo in handlers:
-            handlers.remove(_end_runs_before_undo)
 
 
 class OBJECT_OT_gauss_stylize_reset(bpy.types.Operator):

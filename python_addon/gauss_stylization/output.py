@@ -14,7 +14,7 @@ pointer, and writing through it crashed Blender.
 import bpy
 
 from . import mesh_io
-from .validation import SettingsError
+from .errors import SettingsError
 
 SHAPE_KEY_NAME = "Gauss Stylized"
 BASIS_NAME = "Basis"

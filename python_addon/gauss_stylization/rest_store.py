@@ -10,7 +10,7 @@ import numpy as np
 
 from . import mesh_io
 from .output import target_key
-from .validation import SettingsError
+from .errors import SettingsError
 
 COORDS = "_gauss_rest_co"
 TARGET = "_gauss_rest_target"

@@ -7,32 +7,20 @@ start leaves the object as it was.
 """
 
 import time
-from collections import namedtuple
 
 import numpy as np
 
-from . import mesh_io, native, output, rest_store, styles
-from .validation import SettingsError, check_coordinates, check_object, check_settings
-
-# What a tick compares to decide what to send to the solver. Only lambda and
-# the pins need a re-factorization; styles and assignments are cheap to swap.
-Applied = namedtuple("Applied", "styles assignment pins lam admm")
-
-
-def settings_key(settings):
-    slots = tuple(
-        (slot.preset, slot.sigma, slot.mu, tuple(slot.orientation), slot.axis_contribution,
-         tuple(tuple(item.vector) for item in slot.custom_normals))
-        for slot in settings.styles)
-    assignment = (tuple(slot.vertex_group for slot in settings.styles), settings.uncovered)
-    return Applied(slots, assignment, settings.pin_group, settings.lam, settings.admm_iterations)
-
+from . import mesh_io, native, output, rest_store, schema, styles
+from .errors import SettingsError
+from .fields import Live, changes
+from .settings_io import add_slot, to_dict
+from .validation import check_coordinates, check_object, check_settings
 
 def ensure_style_slot(settings):
-    """An artist must be able to press Stylize right away: add a Cube slot if there is none."""
+    """An artist must be able to press Stylize right away: add a slot of the default preset
+    if there is none. True if one was added."""
     if len(settings.styles) == 0:
-        slot = settings.styles.add()
-        slot.name = "Cube"
+        add_slot(settings, {"preset": schema.DEFAULT_PRESET})
         settings.active_style_index = 0
         return True
     return False
@@ -50,7 +38,10 @@ class Session:
         settings = obj.gauss_stylization
         check_settings(obj, settings, self.weights)
         self.target = output.make_target(obj, self.arrays.num_vertices)
-        self.applied = settings_key(settings)
+        # The settings the solver runs with (settings_io.to_dict); a tick compares them
+        # with the panel's to find what changed, and each change does what its field's
+        # Live says (schema.py): so no setting can be missed.
+        self.applied = to_dict(settings)
         self.solver = self._make_solver(settings)
         # The solver writes its result straight into this buffer every step.
         self.result = np.empty_like(self.arrays.coords)
@@ -63,9 +54,8 @@ class Session:
         pins = styles.pinned_vertices(self.weights, settings.pin_group)
         try:
             solver = self.gauss_core.Solver(
-                self.arrays.coords, self.arrays.triangles,
-                pinned=pins if len(pins) else None, lam=settings.lam,
-                admm_iterations=settings.admm_iterations)
+                self.arrays.coords, self.arrays.triangles, pinned=pins if len(pins) else None,
+                **{field.name: field.read(settings) for field in schema.SOLVER_SETTERS})
             solver.set_styles(styles.make_styles(self.gauss_core, settings.styles))
             solver.set_face_styles(self._face_styles(settings))
         except (ValueError, TypeError, RuntimeError) as exc:
@@ -81,37 +71,39 @@ class Session:
     def sync_settings(self):
         """Send changed settings to the solver. Returns None, or why it cannot run now."""
         settings = self.obj.gauss_stylization
-        wanted = settings_key(settings)
-        if wanted == self.applied:
-            return None
-        try:
-            check_settings(self.obj, settings, self.weights)
-            self._apply(settings, wanted)
-        except SettingsError as exc:
-            return str(exc)
-        except (ValueError, TypeError) as exc:
-            return "The solver rejected a setting: %s" % exc
+        wanted = to_dict(settings)
+        changed = changes(schema.OBJECT, self.applied, wanted)
+        if changed:
+            try:
+                check_settings(self.obj, settings, self.weights)
+                self._apply(settings, changed)
+            except SettingsError as exc:
+                return str(exc)
+            except (ValueError, TypeError) as exc:
+                return "The solver rejected a setting: %s" % exc
         self.applied = wanted
         return None
 
-    def _apply(self, settings, wanted):
-        solver, old = self.solver, self.applied
-        if wanted.styles != old.styles or wanted.assignment != old.assignment:
+    def _apply(self, settings, changed):
+        solver = self.solver
+        new_styles = faces = None
+        if Live.STYLES in changed:
             new_styles = styles.make_styles(self.gauss_core, settings.styles)
+        if Live.REGIONS in changed:
             faces = self._face_styles(settings)
-            # Never let face indices point past the style list, in either order.
-            if len(new_styles) >= len(old.styles):
-                solver.set_styles(new_styles)
-                solver.set_face_styles(faces)
-            else:
-                solver.set_face_styles(faces)
-                solver.set_styles(new_styles)
-        if wanted.pins != old.pins:
+        # Never let face indices point past the style list, in either order.
+        if new_styles is not None and len(new_styles) >= len(self.applied["styles"]):
+            solver.set_styles(new_styles)
+            new_styles = None
+        if faces is not None:
+            solver.set_face_styles(faces)
+        if new_styles is not None:
+            solver.set_styles(new_styles)
+        if Live.PINS in changed:
             solver.set_pins(styles.pinned_vertices(self.weights, settings.pin_group))
-        if wanted.lam != old.lam:
-            solver.lam = settings.lam
-        if wanted.admm != old.admm:
-            solver.admm_iterations = settings.admm_iterations
+        if Live.SETTER in changed:
+            for field in schema.SOLVER_SETTERS:
+                setattr(solver, field.name, field.read(settings))
 
     def step(self, count=1):
         """Run ``count`` solver iterations and write the result to the target."""

@@ -1,39 +1,59 @@
-"""Settings <-> plain dict (JSON), for the redo panel.
+"""Settings <-> plain dict (JSON), and the settings writer for scripts, scenes and tests.
 
-When a live run is kept, the operator stores the settings it ended with; if
-the artist then changes the iteration count in the redo panel, Blender first
-undoes to the state *before* the run (older settings) and calls execute(),
-which re-applies these settings so the redo matches what was seen.
-Only json.loads is used: no eval.
+The dict has one key per field of schema.OBJECT; "styles" is a list of slot
+dicts (one key per field of schema.SLOT), custom normals are lists of 3 numbers.
+
+The redo panel: when a live run is kept, the operator stores the settings it
+ended with (to_json); if the artist then changes the iteration count in the
+redo panel, Blender first undoes to the state *before* the run (older
+settings) and calls execute(), which re-applies them (apply_json) so the redo
+matches what was seen. Only json.loads is used: no eval.
 """
 
 import json
 
-SLOT_FIELDS = ("name", "preset", "sigma", "mu", "axis_contribution", "vertex_group")
-SETTINGS_FIELDS = ("lam", "admm_iterations", "output", "pin_group", "uncovered", "active_style_index")
+from . import schema
+from .fields import read_all, write_all
+
+_PRESET = schema.field(schema.SLOT, "preset")
+_PRESET_LABELS = {item[0]: item[1] for item in _PRESET.items}
+
+
+def to_dict(settings):
+    return read_all(schema.OBJECT, settings)
 
 
 def to_json(settings):
-    data = {field: getattr(settings, field) for field in SETTINGS_FIELDS}
-    data["styles"] = [_slot_to_dict(slot) for slot in settings.styles]
-    return json.dumps(data)
-
-
-def _slot_to_dict(slot):
-    data = {field: getattr(slot, field) for field in SLOT_FIELDS}
-    data["orientation"] = list(slot.orientation)
-    data["custom_normals"] = slot.custom_normal_list()
-    return data
+    return json.dumps(to_dict(settings))
 
 
 def apply_json(settings, text):
-    data = json.loads(text)
-    for field in SETTINGS_FIELDS:
-        setattr(settings, field, data[field])
-    settings.styles.clear()
-    for slot_data in data["styles"]:
-        slot = settings.styles.add()
-        for field in SLOT_FIELDS:
-            setattr(slot, field, slot_data[field])
-        slot.orientation = slot_data["orientation"]
-        slot.set_custom_normals(slot_data["custom_normals"])
+    """Every setting from to_json's text (KeyError if one is missing or unknown)."""
+    write_all(schema.OBJECT, settings, json.loads(text), complete=True)
+
+
+def apply_dict(settings, data):
+    """Set the settings named in ``data`` (the others keep their values).
+
+    ``data["styles"]``, if given, replaces the slots by new ones made from its
+    dicts, which may name only some fields (see add_slot). Unknown names raise KeyError.
+    """
+    data = dict(data)
+    if "styles" in data:
+        data["styles"] = [_named(spec) for spec in data["styles"]]
+    write_all(schema.OBJECT, settings, data)
+
+
+def add_slot(settings, spec):
+    """Append a slot made from ``spec`` (field name -> value); fields it does not name keep
+    their defaults, and a slot without a name is called after its preset. Returns the slot."""
+    slot = settings.styles.add()
+    write_all(schema.SLOT, slot, _named(spec))
+    return slot
+
+
+def _named(spec):
+    if "name" in spec:
+        return spec
+    preset = spec.get("preset", schema.DEFAULT_PRESET)
+    return dict(spec, name=_PRESET_LABELS.get(preset, preset))

@@ -3,7 +3,7 @@
 import bpy
 from bpy.props import EnumProperty
 
-from .properties import CUSTOM
+from .schema import CUSTOM
 from .validation import poll_result
 
 

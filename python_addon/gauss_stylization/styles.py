@@ -2,10 +2,7 @@
 
 import numpy as np
 
-from .properties import CUSTOM
-
-REGION_THRESHOLD = 0.5  # a face is in a group when its vertex weights average above this
-PIN_THRESHOLD = 0.5     # a vertex is pinned when its pin-group weight is above this
+from .schema import CUSTOM, PIN_THRESHOLD, REGION_THRESHOLD
 
 
 def rotation_matrix(slot):
@@ -14,7 +11,9 @@ def rotation_matrix(slot):
 
 
 def make_style(gauss_core, slot):
-    """One style slot -> gauss_core.Style (may raise ValueError)."""
+    """One style slot -> gauss_core.Style (may raise ValueError).
+
+    Every slot field whose change rebuilds styles (Live.STYLES in schema.SLOT) is used here."""
     rotation = rotation_matrix(slot)
     if slot.preset == CUSTOM:
         # Custom normals are rotated here, so "orientation" means the same for both kinds.
@@ -32,7 +31,7 @@ def face_styles(arrays, group_weights, slot_groups, uncovered):
     """Style index of every solver triangle (-1 = unstyled).
 
     A polygon belongs to a slot's region when the weights of its vertices in
-    the slot's group average above 0.5; later slots win overlaps; a slot
+    the slot's group average above REGION_THRESHOLD; later slots win overlaps; a slot
     without a group covers the whole mesh. Triangles inherit their polygon's style.
     """
     default = 0 if uncovered == 'FIRST_SLOT' and slot_groups else -1

@@ -2,8 +2,9 @@
 
 import bpy
 
-from . import native, operators
-from .properties import CUSTOM
+from . import native, runs, schema
+from .errors import NativeModuleError
+from .fields import Panel
 
 CATEGORY = "Gauss"
 
@@ -44,7 +45,7 @@ class VIEW3D_PT_gauss_stylization(_GaussPanel, bpy.types.Panel):
         layout = self.layout
         try:
             native.core()
-        except native.NativeModuleError as exc:
+        except NativeModuleError as exc:
             _wrapped_error(layout, str(exc))
         obj = _mesh_object(context)
         if obj is None:
@@ -52,7 +53,7 @@ class VIEW3D_PT_gauss_stylization(_GaussPanel, bpy.types.Panel):
             return
         if len(context.selected_objects) > 1:
             layout.label(text="Only the active object '%s' is stylized" % obj.name, icon='INFO')
-        if obj.as_pointer() in operators.running:
+        if runs.is_running(obj):
             box = layout.box().column(align=True)
             box.label(text="Stylizing live", icon='TIME')
             box.label(text="Enter / Left-click: keep")
@@ -61,12 +62,7 @@ class VIEW3D_PT_gauss_stylization(_GaussPanel, bpy.types.Panel):
         row.scale_y = 1.5
         row.operator("object.gauss_stylize", icon='PLAY')
         row.operator("object.gauss_stylize_reset", icon='LOOP_BACK')
-        settings = obj.gauss_stylization
-        col = layout.column()
-        col.use_property_split = True
-        col.use_property_decorate = False
-        col.prop(settings, "output")
-        col.prop_search(settings, "pin_group", obj, "vertex_groups", text="Pin Group")
+        _draw_rows(_split_column(layout), obj, obj.gauss_stylization, schema.OBJECT, Panel.MAIN)
 
 
 class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
@@ -90,31 +86,39 @@ class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
         buttons.operator("object.gauss_style_move", icon='TRIA_UP', text="").direction = 'UP'
         buttons.operator("object.gauss_style_move", icon='TRIA_DOWN', text="").direction = 'DOWN'
         if not settings.styles:
-            layout.label(text="Stylize adds a Cube style", icon='INFO')
+            layout.label(text="Stylize adds a %s style" % schema.DEFAULT_PRESET_LABEL, icon='INFO')
             return
-        col = layout.column()
-        col.use_property_split = True
-        col.use_property_decorate = False
-        col.prop(settings, "uncovered", text="Other Faces")
+        col = _split_column(layout)
+        _draw_rows(col, obj, settings, schema.OBJECT, Panel.STYLES)
         if 0 <= settings.active_style_index < len(settings.styles):
-            _draw_slot(col, obj, settings.styles[settings.active_style_index])
+            col.separator()
+            _draw_rows(col, obj, settings.styles[settings.active_style_index], schema.SLOT, Panel.SLOT)
 
 
-def _draw_slot(layout, obj, slot):
-    layout.separator()
-    layout.prop(slot, "preset")
-    layout.prop(slot, "sigma")
-    layout.prop(slot, "mu")
-    layout.prop(slot, "orientation", text="Rotation")
-    if slot.preset != CUSTOM:
-        layout.prop(slot, "axis_contribution", text="Axis Weight")
-    layout.prop_search(slot, "vertex_group", obj, "vertex_groups", text="Region")
-    if slot.preset == CUSTOM:
-        _draw_custom_normals(layout, slot)
+def _split_column(layout):
+    col = layout.column()
+    col.use_property_split = True
+    col.use_property_decorate = False
+    return col
 
 
-def _draw_custom_normals(layout, slot):
-    layout.label(text="Custom Normals")
+def _draw_rows(layout, obj, owner, table, panel):
+    """The rows of ``panel``: every field of ``table`` placed there that matters for ``owner``."""
+    for field in schema.rows(table, panel):
+        if field.relevant(owner):
+            _WIDGETS[field.widget](layout, obj, owner, field)
+
+
+def _draw_prop(layout, _obj, owner, field):
+    layout.prop(owner, field.name, text=field.text or field.label)
+
+
+def _draw_vertex_group(layout, obj, owner, field):
+    layout.prop_search(owner, field.name, obj, "vertex_groups", text=field.text or field.label)
+
+
+def _draw_custom_normals(layout, _obj, slot, field):
+    layout.label(text=field.label)
     row = layout.row()
     row.template_list("GAUSS_UL_normals", "", slot, "custom_normals", slot, "active_normal_index", rows=3)
     buttons = row.column(align=True)
@@ -135,13 +139,11 @@ class VIEW3D_PT_gauss_solver(_GaussPanel, bpy.types.Panel):
         return _mesh_object(context) is not None
 
     def draw(self, context):
-        settings = _mesh_object(context).gauss_stylization
-        col = self.layout.column()
-        col.use_property_split = True
-        col.use_property_decorate = False
-        col.prop(settings, "lam")
-        col.prop(settings, "admm_iterations")
-        col.prop(settings, "iterations")
+        obj = _mesh_object(context)
+        _draw_rows(_split_column(self.layout), obj, obj.gauss_stylization, schema.OBJECT, Panel.SOLVER)
+
+
+_WIDGETS = {"prop": _draw_prop, "vertex_group": _draw_vertex_group, "normals": _draw_custom_normals}
 
 
 def _wrapped_error(layout, text, width=40):

@@ -193,7 +193,7 @@ FLOAT_CASES = [
     ("settings", "lam", -math.inf, None),
     ("slot", "sigma", math.nan, "Sigma"),
     ("slot", "sigma", 1e30, None),
-    ("slot", "sigma", -1e30, "Sigma"),  # clamped to 0, which is no sharpness
+    ("slot", "sigma", -1e30, None),  # clamped to the lower limit (LIMITS), which runs
     ("slot", "mu", math.nan, "Mu"),
     ("slot", "mu", math.inf, None),
     ("slot", "mu", -math.inf, None),

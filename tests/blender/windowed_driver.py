@@ -152,7 +152,7 @@ def new_reports():
 
 def live_operator():
     import gauss_stylization
-    return next(iter(gauss_stylization.operators.running.values()), None)
+    return next(iter(gauss_stylization.runs.running.values()), None)
 
 
 def wait_steps(count, limit=30.0):
@@ -224,7 +224,7 @@ def esc_cancels_and_restores(name):
     steps_at_change = op.session.steps if op else 0
     yield from wait_steps(steps_at_change + 3)
     check("sigma changed mid-run reaches the solver",
-          op is not None and op.session.applied.styles[0][1] == 9.0)
+          op is not None and op.session.applied["styles"][0]["sigma"] == 9.0)
     changed = not np.array_equal(coords(bpy.data.objects[name]), original)
     press('ESC', *viewport_point())
     yield from wait_stopped()

@@ -1,0 +1,323 @@
+"""Kinds of settings: how one field of the schema (schema.py) becomes a Blender
+property, a plain value (JSON round-trip, live-change detection), a check with
+an artist-readable message, and a panel row (drawn by ui.py after ``widget``).
+
+A field knows nothing of the others; the generic walks at the bottom
+(read_all, write_all, check_all, changes) run over a table of fields.
+"""
+
+import enum
+import math
+
+import numpy as np
+from bpy.props import (
+    CollectionProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty, StringProperty,
+)
+
+from . import native
+from .errors import SettingsError
+
+
+class Live(enum.Enum):
+    """What a change during a live run needs before the next solver step."""
+    NOTHING = "nothing"             # the running solver does not read it (names, UI state, the next run)
+    STYLES = "rebuild styles"       # new gauss_core.Style objects (set_styles); no re-factorization
+    REGIONS = "reassign regions"    # new face -> style indices (set_face_styles); no re-factorization
+    PINS = "re-factor"              # set_pins(): the only change that re-factors the system
+    SETTER = "solver setter"        # solver.<name> = value; also the Solver() keyword of that name
+
+
+class Panel(enum.Enum):
+    """Where a field's row is drawn (ui.py), in schema order."""
+    MAIN = "main"       # Gauss Stylization panel, under Stylize / Reset
+    STYLES = "styles"   # Styles sub-panel, under the slot list
+    SLOT = "slot"       # Styles sub-panel, the active slot's settings
+    SOLVER = "solver"   # Solver sub-panel
+
+
+class Where:
+    """What a check needs to know: the object, the vertex groups read when the run
+    started ({name: weights}), and whose setting it is (for messages)."""
+
+    def __init__(self, obj, known_groups, owner_name=None):
+        self.obj, self.known_groups, self.owner_name = obj, known_groups, owner_name
+
+    def inside(self, owner_name):
+        return Where(self.obj, self.known_groups, owner_name)
+
+    def named(self, label):
+        return "%s: %s" % (self.owner_name, label) if self.owner_name else label
+
+
+def _always(_owner):
+    return True
+
+
+class Field:
+    """One setting.
+
+    name:     the property's identifier (part of the scripting interface: keep it)
+    label:    its name in the UI and in error messages
+    tooltip:  the property's description
+    live:     what a change during a live run needs (Live)
+    panel:    where its row is drawn (Panel), or None
+    text:     the row's label where the panel says it shorter than ``label``
+    relevant: owner -> bool; False where the setting has no effect (row hidden, value not checked)
+    """
+
+    widget = "prop"  # plain layout.prop row
+
+    def __init__(self, name, label, tooltip="", live=Live.NOTHING, panel=None, text=None, relevant=None):
+        self.name, self.label, self.tooltip = name, label, tooltip
+        self.live, self.panel, self.text = live, panel, text
+        self.relevant = relevant or _always
+
+    def read(self, owner):
+        return getattr(owner, self.name)
+
+    def write(self, owner, value):
+        setattr(owner, self.name, value)
+
+    def check(self, owner, where):
+        """Raise SettingsError if the value cannot go to the solver (most kinds: always fine)."""
+
+    def changes(self, old, new):
+        return {self.live} if old != new else set()
+
+
+class _Number(Field):
+    """Where the solver owns the setting (its name is in native.facts().limits), default
+    and hard range come from the solver and must not be given here; otherwise they must
+    be. soft: the UI slider range, None for the hard one."""
+
+    def __init__(self, name, label, tooltip, default=None, hard=None, soft=None, **options):
+        super().__init__(name, label, tooltip, **options)
+        facts = native.facts()
+        owned = name in facts.limits
+        if owned and (default is not None or hard is not None):
+            raise ValueError("%s: the solver owns its default and range (settings.h)" % name)
+        if not owned and (default is None or hard is None):
+            raise ValueError("%s: a setting the solver does not own needs a default and a range" % name)
+        self.default = self.cast(facts.defaults[name] if owned else default)
+        self.hard = tuple(self.cast(x) for x in (facts.limits[name] if owned else hard))
+        self.soft = soft or self.hard
+
+    def check(self, owner, where):
+        value = getattr(owner, self.name)
+        low, high = self.hard
+        if not (math.isfinite(value) and low <= value <= high):
+            raise SettingsError("%s must be %s between %g and %g (it is %s)"
+                                % (where.named(self.label), self.noun, low, high, value))
+
+
+def _float32_inside(low, high):
+    """The float32 range Blender stores as min/max, rounded inwards, so a clamped value passes the check."""
+    low32, high32 = np.float32(low), np.float32(high)
+    if low32 < low:
+        low32 = np.nextafter(low32, np.float32(np.inf))
+    if high32 > high:
+        high32 = np.nextafter(high32, np.float32(-np.inf))
+    return float(low32), float(high32)
+
+
+class Float(_Number):
+    cast, noun = float, "a number"
+
+    def prop(self, _classes):
+        low, high = _float32_inside(*self.hard)
+        return FloatProperty(name=self.label, description=self.tooltip, default=self.default,
+                             min=low, max=high, soft_min=max(self.soft[0], low), soft_max=min(self.soft[1], high))
+
+
+class Int(_Number):
+    cast, noun = int, "an integer"
+
+    def prop(self, _classes, label=None, tooltip=None):
+        """label, tooltip: for another property of the same range (an operator's)."""
+        return IntProperty(name=label or self.label, description=tooltip or self.tooltip, default=self.default,
+                           min=self.hard[0], max=self.hard[1], soft_min=self.soft[0], soft_max=self.soft[1])
+
+
+class Choice(Field):
+    """An enum. items: (identifier, label, tooltip, number); the numbers are what .blend files store."""
+
+    def __init__(self, name, label, tooltip, items, default, **options):
+        super().__init__(name, label, tooltip, **options)
+        self.items, self.default = tuple(items), default
+        self.identifiers = {item[0] for item in self.items}
+
+    def prop(self, _classes):
+        return EnumProperty(name=self.label, description=self.tooltip, items=self.items, default=self.default)
+
+    def check(self, owner, where):
+        # A number saved by a newer version reads back as "" (no item has it).
+        if getattr(owner, self.name) not in self.identifiers:
+            raise SettingsError("%s holds a value this version does not know; pick another one"
+                                % where.named(self.label))
+
+
+class Text(Field):
+    def __init__(self, name, label, tooltip="", default="", **options):
+        super().__init__(name, label, tooltip, **options)
+        self.default = default
+
+    def prop(self, _classes):
+        return StringProperty(name=self.label, description=self.tooltip, default=self.default)
+
+
+class VertexGroup(Text):
+    """The name of a vertex group of the object (empty: none)."""
+    widget = "vertex_group"
+
+    def check(self, owner, where):
+        group = getattr(owner, self.name)
+        if not group or group in where.known_groups:
+            return
+        # A slot has one group, so its name says enough; object-level groups say which setting.
+        what = where.owner_name or self.label
+        if group in where.obj.vertex_groups:  # weights are read once, when stylization starts
+            raise SettingsError("%s: vertex group '%s' was added after Stylize started; "
+                                "restart Stylize to use it" % (what, group))
+        raise SettingsError("%s: there is no vertex group '%s' on '%s'" % (what, group, where.obj.name))
+
+
+class Euler(Field):
+    def prop(self, _classes):
+        return FloatVectorProperty(name=self.label, description=self.tooltip, size=3,
+                                   subtype='EULER', unit='ROTATION')
+
+    def read(self, owner):
+        return list(getattr(owner, self.name))
+
+    def check(self, owner, where):
+        if not all(math.isfinite(a) for a in getattr(owner, self.name)):
+            raise SettingsError(where.named(self.label) + " must be finite angles")
+
+
+class Direction(Field):
+    def __init__(self, name, label, tooltip, default, **options):
+        super().__init__(name, label, tooltip, **options)
+        self.default = default
+
+    def prop(self, _classes):
+        return FloatVectorProperty(name=self.label, description=self.tooltip, size=3, subtype='XYZ',
+                                   default=self.default)
+
+    def read(self, owner):
+        return list(getattr(owner, self.name))
+
+
+def normal_problem(values):
+    """Why 3 numbers cannot be a preferred normal (None if they can)."""
+    if not all(math.isfinite(x) for x in values):
+        return "is not a finite vector"
+    if sum(x * x for x in values) < 1e-12:
+        return "has zero length"
+    return None
+
+
+class Normals(Field):
+    """The slot's custom normals: a collection of ``item_class`` read and written
+    as a list of 3-vectors through the slot's custom_normal_list / set_custom_normals."""
+    widget = "normals"
+
+    def __init__(self, name, label, item_class, **options):
+        super().__init__(name, label, **options)
+        self.item_class = item_class
+
+    def prop(self, classes):
+        return CollectionProperty(type=classes[self.item_class], name=self.label)
+
+    def read(self, owner):
+        return [list(normal) for normal in owner.custom_normal_list()]
+
+    def write(self, owner, value):
+        owner.set_custom_normals(value)
+
+    def check(self, owner, where):
+        normals = owner.custom_normal_list()
+        if not normals:
+            raise SettingsError(where.owner_name + " is set to Custom but has no normals; add at least one")
+        for number, normal in enumerate(normals, 1):
+            problem = normal_problem(normal)
+            if problem:
+                raise SettingsError("%s: custom normal %d %s" % (where.owner_name, number, problem))
+
+
+class Index(Field):
+    """The active row of a UI list."""
+
+    def prop(self, _classes):
+        return IntProperty(name=self.label, default=0)
+
+
+class Slots(Field):
+    """A collection of items described by ``item_fields`` (the style slots)."""
+
+    def __init__(self, name, label, item_class, item_fields, owner_name, **options):
+        super().__init__(name, label, **options)
+        self.item_class, self.item_fields = item_class, tuple(item_fields)
+        self.owner_name = owner_name  # item -> how messages call it
+        self.item_effects = {field.live for field in self.item_fields}
+
+    def prop(self, classes):
+        return CollectionProperty(type=classes[self.item_class], name=self.label)
+
+    def read(self, owner):
+        return [read_all(self.item_fields, item) for item in getattr(owner, self.name)]
+
+    def write(self, owner, value):
+        collection = getattr(owner, self.name)
+        collection.clear()
+        for data in value:
+            write_all(self.item_fields, collection.add(), data)
+
+    def check(self, owner, where):
+        for item in getattr(owner, self.name):
+            check_all(self.item_fields, item, where.inside(self.owner_name(item)))
+
+    def changes(self, old, new):
+        if len(old) != len(new):  # items added or removed: everything they carry changed
+            return set(self.item_effects)
+        found = set()
+        for old_item, new_item in zip(old, new):
+            found |= changes(self.item_fields, old_item, new_item)
+        return found
+
+
+# -- walks over a table of fields ---------------------------------------------------
+
+def read_all(fields, owner):
+    """{name: plain value} of every field (lists, not tuples: the JSON form)."""
+    return {field.name: field.read(owner) for field in fields}
+
+
+def write_all(fields, owner, data, complete=False):
+    """Set the fields named in ``data`` (the rest keep their values), in table order.
+
+    Unknown names raise KeyError; with ``complete`` every field must be given."""
+    known = {field.name for field in fields}
+    unknown = set(data) - known
+    if unknown:
+        raise KeyError("unknown setting(s) %s; known: %s" % (", ".join(sorted(unknown)), ", ".join(sorted(known))))
+    missing = known - set(data)
+    if complete and missing:
+        raise KeyError("missing setting(s) %s" % ", ".join(sorted(missing)))
+    for field in fields:
+        if field.name in data:
+            field.write(owner, data[field.name])
+
+
+def check_all(fields, owner, where):
+    for field in fields:
+        if field.relevant(owner):
+            field.check(owner, where)
+
+
+def changes(fields, old, new):
+    """The Live effects of the differences between two read_all() results."""
+    found = set()
+    for field in fields:
+        found |= field.changes(old[field.name], new[field.name])
+    found.discard(Live.NOTHING)
+    return found

@@ -1,0 +1,117 @@
+"""Every setting of the add-on, each written once.
+
+The PropertyGroups (properties.py), the JSON round-trip and the settings writer
+(settings_io.py), the validation before a run (validation.py), what a live run
+does when a setting changes (session.py) and the panel rows (ui.py) are all
+derived from these tables. Defaults and hard ranges of what the solver owns
+(lam, sigma, mu, axis_contribution, admm_iterations) and the preset registry
+come from the solver (native.facts()), never from here.
+
+A new setting is one line in its table (kinds: fields.py), plus its use in the
+solver call for slot fields (styles.make_style); see python_addon/README.md.
+"""
+
+from . import native
+from .fields import (
+    Choice, Direction, Euler, Float, Index, Int, Live, Normals, Panel, Slots, Text, VertexGroup,
+)
+
+FACTS = native.facts()
+CUSTOM = 'CUSTOM'
+REGION_THRESHOLD = 0.5  # a face is in a slot's region when its vertex weights average above this
+PIN_THRESHOLD = 0.5     # a vertex is pinned when its pin-group weight is above this
+CUSTOM_NUMBER = 99  # enum number of Custom in saved files; presets are numbered 0, 1, ... in PRESETS order
+
+
+def preset_identifier(name):
+    """Solver preset name -> enum identifier ('square_pyramid' -> 'SQUARE_PYRAMID')."""
+    return name.upper()
+
+
+def preset_label(name):
+    return name.replace("_", " ").title()
+
+
+def _preset_items():
+    # .blend files store the number, so preset i of the solver's registry is number i
+    # (the registry only ever appends; see docs/python_api.md).
+    items = [(preset_identifier(name), preset_label(name),
+              "Prefer the face normals of a %s" % preset_label(name).lower(), number)
+             for number, name in enumerate(FACTS.presets)]
+    return items + [(CUSTOM, "Custom", "Prefer the normals listed below", CUSTOM_NUMBER)]
+
+
+DEFAULT_PRESET = preset_identifier(FACTS.defaults["preset"])
+DEFAULT_PRESET_LABEL = preset_label(FACTS.defaults["preset"])
+
+
+def _is_custom(slot):
+    return slot.preset == CUSTOM
+
+
+def _not_custom(slot):
+    return slot.preset != CUSTOM
+
+
+# GaussNormal: one preferred normal of a Custom style.
+NORMAL = (
+    Direction("vector", "Normal", "Preferred face normal (object space, need not be unit length)",
+              default=(0.0, 0.0, 1.0)),
+)
+
+# GaussStyleSlot: one style and the region it applies to.
+SLOT = (
+    # 'name' is what the UIList shows and renames (double-click).
+    Text("name", "Name", default="Style"),
+    Choice("preset", "Style", "Shape whose face normals this region prefers, or your own normals",
+           _preset_items(), DEFAULT_PRESET, live=Live.STYLES, panel=Panel.SLOT),
+    Float("sigma", "Sigma", "Sharpness: higher values pull normals closer to the preferred ones",
+          soft=(0.1, 20.0), live=Live.STYLES, panel=Panel.SLOT),
+    Float("mu", "Mu", "Strength of this style relative to the others",
+          soft=(0.0, 10.0), live=Live.STYLES, panel=Panel.SLOT),
+    Euler("orientation", "Orientation", "Rotation of the preferred normals (object space)",
+          live=Live.STYLES, panel=Panel.SLOT, text="Rotation"),
+    Float("axis_contribution", "Axis Contribution", "Weight of the axis normals for presets that have them",
+          live=Live.STYLES, panel=Panel.SLOT, text="Axis Weight", relevant=_not_custom),
+    VertexGroup("vertex_group", "Vertex Group", "Region of this style (faces whose vertex weights average "
+                "above %g); empty means the whole mesh" % REGION_THRESHOLD,
+                live=Live.REGIONS, panel=Panel.SLOT, text="Region"),
+    Normals("custom_normals", "Custom Normals", "GaussNormal", live=Live.STYLES, panel=Panel.SLOT,
+            relevant=_is_custom),
+    Index("active_normal_index", "Active Normal"),
+)
+
+# GaussSettings: Object.gauss_stylization.
+OBJECT = (
+    Float("lam", "Lambda", "How strongly faces follow their style versus keeping their shape",
+          soft=(0.0, 20.0), live=Live.SETTER, panel=Panel.SOLVER),
+    Int("admm_iterations", "ADMM Iterations", "Inner iterations per solver step",
+        live=Live.SETTER, panel=Panel.SOLVER),
+    Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode",
+        default=100, hard=(0, 100000), panel=Panel.SOLVER),
+    Choice("output", "Output", "Where the stylized coordinates go",
+           (('MESH', "Mesh", "Move the vertices of the mesh itself", 0),
+            ('SHAPE_KEY', "Shape Key",
+             "Write the result into the shape key 'Gauss Stylized' to blend it with its slider", 1)),
+           'MESH', panel=Panel.MAIN),
+    VertexGroup("pin_group", "Pin Group", "Vertices in this group (weight above %g) keep their position"
+                % PIN_THRESHOLD, live=Live.PINS, panel=Panel.MAIN),
+    Choice("uncovered", "Uncovered Faces", "Style of the faces outside every style's vertex group",
+           (('FIRST_SLOT', "First Style", "Faces outside every style's group use the first style", 0),
+            ('UNSTYLED', "Unstyled", "Faces outside every style's group only keep their shape", 1)),
+           'FIRST_SLOT', live=Live.REGIONS, panel=Panel.STYLES, text="Other Faces"),
+    Slots("styles", "Styles", "GaussStyleSlot", SLOT, owner_name=lambda slot: "Style '%s'" % slot.name),
+    Index("active_style_index", "Active Style"),
+)
+
+
+def field(table, name):
+    return next(f for f in table if f.name == name)
+
+
+def rows(table, panel):
+    """The fields of ``table`` drawn in ``panel``, in order."""
+    return [f for f in table if f.panel is panel]
+
+
+SOLVER_SETTERS = tuple(f for f in OBJECT if f.live is Live.SETTER)  # Solver keyword = property = setter
