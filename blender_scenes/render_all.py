@@ -16,10 +16,11 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import common  # noqa: E402
 import default_scene  # noqa: E402
+import render_kit  # noqa: E402
 import scene_cube_stays_cube  # noqa: E402
 import scene_extreme  # noqa: E402
+import scene_kit  # noqa: E402
 import scene_multistyle  # noqa: E402
 import scene_pins  # noqa: E402
 import scene_sigma  # noqa: E402
@@ -35,7 +36,7 @@ def main():
     parser.add_argument("out_dir")
     parser.add_argument("--gallery", help="also copy the PNGs into this folder")
     parser.add_argument("--only", help="comma-separated scene names (default: all)")
-    args = parser.parse_args(common.script_args())
+    args = parser.parse_args(render_kit.script_args())
     build_dir, out_dir = os.path.abspath(args.build_dir), os.path.abspath(args.out_dir)
     chosen = SCENES
     if args.only:
@@ -45,20 +46,15 @@ def main():
             raise SystemExit("unknown scene(s) %s; known: %s"
                              % (", ".join(sorted(unknown)), ", ".join(s.NAME for s in SCENES)))
         chosen = [scene for scene in SCENES if scene.NAME in wanted]
-    print("test meshes: %s" % (common.MESH_DIR if os.path.isdir(common.MESH_DIR)
+    print("test meshes: %s" % (scene_kit.MESH_DIR if os.path.isdir(scene_kit.MESH_DIR)
                                else "not found, using Blender primitives"))
-    common.load_addon(build_dir)
+    scene_kit.load_addon(build_dir)
     total = time.perf_counter()
     for scene in chosen:
-        start = time.perf_counter()
-        print("== %s" % scene.NAME)
-        common.reset_scene()
-        scene.build()
-        png, _ = common.finish(scene.NAME, out_dir, **getattr(scene, "FINISH", {}))
+        png = render_kit.render_scene(scene, out_dir)
         if args.gallery:
             os.makedirs(args.gallery, exist_ok=True)
             shutil.copy(png, os.path.join(args.gallery, scene.NAME + ".png"))
-        print("== %s: %.1f s" % (scene.NAME, time.perf_counter() - start))
     print("== all %d scenes: %.1f s -> %s" % (len(chosen), time.perf_counter() - total, out_dir))
 
 

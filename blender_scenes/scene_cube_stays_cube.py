@@ -5,18 +5,22 @@ label reports the largest vertex displacement measured after stylization."""
 import os
 import sys
 
+import bpy
+import numpy as np
+
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import common  # noqa: E402
+import render_kit  # noqa: E402
+import scene_kit  # noqa: E402
 
 NAME = "cube_stays_cube"
+LAMBDA, STEPS = 20.0, 200
 
 
 def subdivided_cube(name):
     """../shared/meshes/small/cube_gaussstylization_728.obj, or a Blender cube subdivided flat."""
-    path = common.shared_mesh("small/cube_gaussstylization_728.obj")
+    path = scene_kit.shared_mesh("small/cube_gaussstylization_728.obj")
     if path is not None:
-        return common.import_obj(path, name)
-    import bpy
+        return scene_kit.import_obj(path, name)
     bpy.ops.mesh.primitive_cube_add()
     obj = bpy.context.active_object
     obj.name = name
@@ -29,20 +33,21 @@ def subdivided_cube(name):
 
 def build():
     original = subdivided_cube("Cube")
-    common.normalize(original)
-    common.set_flat(original)
-    common.color(original, common.ORIGINAL_COLOR)
-    stylized = common.color(common.duplicate(original, "Cube Stylized"), common.STYLIZED_COLOR)
-    before = [v.co.copy() for v in stylized.data.vertices]
-    common.stylize(stylized, [dict(preset='CUBE')], lam=20.0, iterations=200)
-    moved = max((v.co - b).length for v, b in zip(stylized.data.vertices, before))
+    scene_kit.normalize(original)
+    scene_kit.set_flat(original)
+    render_kit.color(original, render_kit.ORIGINAL_COLOR)
+    stylized = render_kit.color(scene_kit.duplicate(original, "Cube Stylized"), render_kit.STYLIZED_COLOR)
+    before = scene_kit.coords(stylized)
+    scene_kit.stylize(stylized, [dict(preset='CUBE')], lam=LAMBDA, iterations=STEPS)
+    moved = float(np.linalg.norm(scene_kit.coords(stylized) - before, axis=1).max())
     print("  largest vertex move: %.3g (cube edge length 2)" % moved)
     if moved > 1e-4:
         raise RuntimeError("the cube style moved a cube's vertices by %g" % moved)
-    common.place_grid([original, stylized], columns=2, spacing_x=3.0)
-    common.label(original, "Cube mesh\n%d vertices" % len(original.data.vertices))
-    common.label(stylized, "Cube style, lambda 20\nlargest move %.0e" % max(moved, 1e-16))
+    render_kit.show_grid([original, stylized],
+                         ["Cube mesh\n%d vertices" % len(original.data.vertices),
+                          "Cube style, lambda %g\nlargest move %.0e" % (LAMBDA, max(moved, 1e-16))],
+                         columns=2, spacing_x=3.0)
 
 
 if __name__ == "__main__":
-    common.run(globals())
+    render_kit.run(sys.modules[__name__])

@@ -5,8 +5,11 @@ ground; without pins the shape shrinks and floats. Tetrahedron style, lambda 8, 
 import os
 import sys
 
+import bpy
+
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import common  # noqa: E402
+import render_kit  # noqa: E402
+import scene_kit  # noqa: E402
 
 NAME = "pins"
 LAMBDA, STEPS = 8.0, 200
@@ -15,32 +18,30 @@ FINISH = dict(camera_direction=(0.15, -1.0, 0.12))
 
 
 def build():
-    import bpy
-    source, _ = common.demo_mesh(common.SPOT, "Original")
-    common.color(source, common.ORIGINAL_COLOR)
-    feet = common.vertex_group(source, "Feet", lambda co: co.z < FEET_HEIGHT)
-    common.paint_region(source, feet, common.PIN_COLOR)
-    free = common.color(common.duplicate(source, "No pins"), common.STYLIZED_COLOR)
-    pinned = common.color(common.duplicate(source, "Feet pinned"), common.STYLIZED_COLOR)
-    common.paint_region(pinned, feet, common.PIN_COLOR)
-    common.stylize(free, [dict(preset='TETRAHEDRON')], lam=LAMBDA, iterations=STEPS)
-    common.stylize(pinned, [dict(preset='TETRAHEDRON')], lam=LAMBDA, iterations=STEPS, pin_group="Feet")
+    source, _ = scene_kit.demo_mesh(scene_kit.SPOT, "Original")
+    render_kit.color(source, render_kit.ORIGINAL_COLOR)
+    feet = scene_kit.vertex_group(source, "Feet", lambda co: co[:, 2] < FEET_HEIGHT)
+    render_kit.paint_region(source, feet, render_kit.PIN_COLOR)
+    free = render_kit.color(scene_kit.duplicate(source, "No pins"), render_kit.STYLIZED_COLOR)
+    pinned = render_kit.color(scene_kit.duplicate(source, "Feet pinned"), render_kit.STYLIZED_COLOR)
+    render_kit.paint_region(pinned, feet, render_kit.PIN_COLOR)
+    scene_kit.stylize(free, [dict(preset='TETRAHEDRON')], lam=LAMBDA, iterations=STEPS)
+    scene_kit.stylize(pinned, [dict(preset='TETRAHEDRON')], lam=LAMBDA, iterations=STEPS, pin_group="Feet")
     objects = [source, free, pinned]
     for obj in objects:
-        lowest = min(v.co.z for v in obj.data.vertices)
-        print("  %-12s lowest point %.3f above the ground" % (obj.name, lowest))
-    common.place_grid(objects, columns=3, spacing_x=2.7)
+        print("  %-12s lowest point %.3f above the ground" % (obj.name, scene_kit.coords(obj)[:, 2].min()))
+    render_kit.place_grid(objects, columns=3, spacing_x=2.7)
     slabs = []
     for obj in objects:  # a thin slab under each shape, its top at the original's ground level
         bpy.ops.mesh.primitive_cube_add(size=1.0, location=(obj.location.x, 0.0, -0.04))
         slab = bpy.context.active_object
         slab.name = "Ground " + obj.name
         slab.scale = (2.3, 1.6, 0.08)
-        common.color(slab, (0.45, 0.45, 0.48, 1.0))
+        render_kit.color(slab, (0.45, 0.45, 0.48, 1.0))
         slabs.append(slab)
     for slab, text in zip(slabs, ["Original\npin group in red", "Tetrahedron\nno pins", "Tetrahedron\nfeet pinned"]):
-        common.label(slab, text, below=0.25)
+        render_kit.label(slab, text, below=0.25)
 
 
 if __name__ == "__main__":
-    common.run(globals())
+    render_kit.run(sys.modules[__name__])

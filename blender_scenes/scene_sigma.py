@@ -7,7 +7,8 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import common  # noqa: E402
+import render_kit  # noqa: E402
+import scene_kit  # noqa: E402
 
 NAME = "sigma"
 SIGMAS = (1.0, 4.0, 20.0)
@@ -15,19 +16,11 @@ LAMBDA, STEPS = 8.0, 200
 
 
 def build():
-    source, _ = common.demo_mesh(common.SPOT, "Original")
-    common.color(source, common.ORIGINAL_COLOR)
-    objects, labels = [source], ["Original"]
-    for sigma in SIGMAS:
-        obj = common.color(common.duplicate(source, "Sigma %g" % sigma), common.STYLIZED_COLOR)
-        common.stylize(obj, [dict(name="Dodecahedron", preset='DODECAHEDRON', sigma=sigma)],
-                       lam=LAMBDA, iterations=STEPS)
-        objects.append(obj)
-        labels.append("sigma %g" % sigma)
-    common.place_grid(objects, columns=2, spacing_x=2.7, spacing_z=2.7)
-    for obj, text in zip(objects, labels):
-        common.label(obj, text)
+    source, _ = scene_kit.demo_mesh(scene_kit.SPOT, "Original")
+    render_kit.sweep(source, [("sigma %g" % sigma, [dict(preset='DODECAHEDRON', sigma=sigma)],
+                               dict(lam=LAMBDA, iterations=STEPS)) for sigma in SIGMAS],
+                     columns=2, spacing_x=2.7, spacing_z=2.7)
 
 
 if __name__ == "__main__":
-    common.run(globals())
+    render_kit.run(sys.modules[__name__])
