@@ -1,7 +1,13 @@
-"""Scene building and measuring helpers shared by the Blender tests."""
+"""Scene building and measuring helpers shared by the Blender tests.
 
-import math
+Meshes are read and settings written through the add-on's own mesh_io and
+settings_io, so a test sees and sets exactly what the add-on does; activate()
+and import_obj() are the demo scenes' (blender_scenes/scene_kit.py), the
+aligned-share measure the module tests' (tests/common/measures.py).
+"""
+
 import os
+import sys
 
 import bmesh
 import bpy
@@ -10,24 +16,23 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 MESHES = os.path.join(REPO, "..", "shared", "meshes")
+BUILD = os.path.abspath(os.environ.get("GAUSS_BUILD_DIR", os.path.join(REPO, "build")))
+if not os.path.isdir(os.path.join(BUILD, "addon", "gauss_stylization")):
+    raise ImportError("no add-on in %s: build the project first (bash scripts/build.sh)"
+                      % os.path.join(BUILD, "addon"))
+for _path in (os.path.join(BUILD, "addon"), os.path.join(REPO, "tests", "common"),
+              os.path.join(REPO, "blender_scenes")):
+    if _path not in sys.path:
+        sys.path.insert(0, _path)
+
+from gauss_stylization import mesh_io, settings_io  # noqa: E402  (importing does not register it)
+from measures import aligned_share as _aligned_share  # noqa: E402
+import scene_kit  # noqa: E402
+from scene_kit import activate  # noqa: E402,F401  (part of this module's API)
 
 AXES = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float)
 
-
-def clear_scene():
-    if bpy.context.mode != 'OBJECT':
-        bpy.ops.object.mode_set(mode='OBJECT')
-    for obj in list(bpy.data.objects):
-        bpy.data.objects.remove(obj)
-    for mesh in list(bpy.data.meshes):
-        bpy.data.meshes.remove(mesh)
-
-
-def activate(obj):
-    for other in bpy.context.view_layer.objects:
-        other.select_set(False)
-    obj.select_set(True)
-    bpy.context.view_layer.objects.active = obj
+clear_scene = scene_kit.reset_scene
 
 
 def object_from_bmesh(bm, name):
@@ -36,8 +41,7 @@ def object_from_bmesh(bm, name):
     bm.free()
     obj = bpy.data.objects.new(name, mesh)
     bpy.context.scene.collection.objects.link(obj)
-    activate(obj)
-    return obj
+    return activate(obj)
 
 
 def suzanne(levels=1):
@@ -63,63 +67,35 @@ def uv_sphere(segments=32, rings=16):
 
 
 def import_obj(relative):
-    bpy.ops.wm.obj_import(filepath=os.path.join(MESHES, relative))
-    obj = bpy.context.selected_objects[0]
-    activate(obj)
-    return obj
+    """A mesh of ../shared/meshes, imported and active."""
+    return scene_kit.import_obj(os.path.join(MESHES, relative))
 
 
 def coords(obj):
-    return mesh_coords(obj.data)
+    return mesh_io.read_vertex_coords(obj.data)
 
 
-def mesh_coords(mesh):
-    out = np.empty((len(mesh.vertices), 3), np.float32)
-    mesh.vertices.foreach_get("co", out.reshape(-1))
-    return out
-
-
-def key_coords(key):
-    out = np.empty((len(key.data), 3), np.float32)
-    key.data.foreach_get("co", out.reshape(-1))
-    return out
+mesh_coords = mesh_io.read_vertex_coords
+key_coords = mesh_io.read_key_coords
 
 
 def evaluated_coords(obj):
     """Vertex positions as displayed (shape keys mixed in), object space."""
     evaluated = obj.evaluated_get(bpy.context.evaluated_depsgraph_get())
-    mesh = evaluated.to_mesh()
-    out = np.empty((len(mesh.vertices), 3), np.float32)
-    mesh.vertices.foreach_get("co", out.reshape(-1))
+    out = mesh_io.read_vertex_coords(evaluated.to_mesh())
     evaluated.to_mesh_clear()
     return out
 
 
 def triangles(obj):
-    mesh = obj.data
-    if hasattr(mesh, "calc_loop_triangles"):  # Blender < 4.1; newer ones compute on demand
-        mesh.calc_loop_triangles()
-    tris = np.empty((len(mesh.loop_triangles), 3), np.int32)
-    mesh.loop_triangles.foreach_get("vertices", tris.reshape(-1))
-    tri_polygon = np.empty(len(tris), np.int32)
-    mesh.loop_triangles.foreach_get("polygon_index", tri_polygon)
-    return tris, tri_polygon
+    """The loop triangles the solver sees and the polygon of each (mesh_io.read_loop_triangles)."""
+    return mesh_io.read_loop_triangles(obj.data)
 
 
 def aligned_share(obj, directions, positions=None, triangle_mask=None, degrees=10.0):
     """Area-weighted share of the surface whose normal is within ``degrees`` of a direction."""
     positions = coords(obj) if positions is None else positions
-    tris, _ = triangles(obj)
-    p = positions.astype(np.float64)
-    cross = np.cross(p[tris[:, 1]] - p[tris[:, 0]], p[tris[:, 2]] - p[tris[:, 0]])
-    area = np.linalg.norm(cross, axis=1)
-    normals = cross / np.maximum(area, 1e-30)[:, None]
-    dirs = np.asarray(directions, float)
-    dirs = dirs / np.linalg.norm(dirs, axis=1)[:, None]
-    aligned = (normals @ dirs.T).max(axis=1) > math.cos(math.radians(degrees))
-    if triangle_mask is not None:
-        area, aligned = area[triangle_mask], aligned[triangle_mask]
-    return float(area[aligned].sum() / area.sum())
+    return _aligned_share(positions, triangles(obj)[0], directions, degrees, triangle_mask)
 
 
 def add_group(obj, name, indices, weight=1.0):
@@ -129,18 +105,14 @@ def add_group(obj, name, indices, weight=1.0):
 
 
 def stylize(iterations, **settings):
-    """Run the operator as a script would (execute, no invoke)."""
-    obj = bpy.context.active_object
-    for name, value in settings.items():
-        setattr(obj.gauss_stylization, name, value)
+    """Run the operator as a script would (execute, no invoke) after setting object ``settings``."""
+    settings_io.apply_dict(bpy.context.active_object.gauss_stylization, settings)
     return bpy.ops.object.gauss_stylize(iterations=iterations)
 
 
 def add_slot(obj, preset='CUBE', group="", name=None, **values):
-    slot = obj.gauss_stylization.styles.add()
-    slot.name = name or preset.title()
-    slot.preset = preset
-    slot.vertex_group = group
-    for key, value in values.items():
-        setattr(slot, key, value)
-    return slot
+    """A new style slot (settings_io.add_slot); unnamed slots are called after their preset."""
+    spec = dict(values, preset=preset, vertex_group=group)
+    if name:
+        spec["name"] = name
+    return settings_io.add_slot(obj.gauss_stylization, spec)

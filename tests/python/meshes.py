@@ -1,4 +1,4 @@
-"""Small meshes and measurements for the module tests (numpy only)."""
+"""Small meshes for the module tests (numpy only); measurements are in tests/common/measures.py."""
 import numpy as np
 
 
@@ -47,16 +47,3 @@ def read_obj(path):
             idx = [int(p.split("/")[0]) - 1 for p in parts[1:]]
             F += [(idx[0], idx[i], idx[i + 1]) for i in range(1, len(idx) - 1)]
     return np.array(V), np.array(F, dtype=np.int64)
-
-
-def face_normals(V, F):
-    n = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
-    area = np.linalg.norm(n, axis=1)
-    return n / np.maximum(area, 1e-300)[:, None], area
-
-
-def aligned_share(V, F, normals, degrees=10.0):
-    """Area-weighted share of faces within `degrees` of one of `normals`."""
-    n, area = face_normals(V, F)
-    best = (n @ np.asarray(normals).T).max(axis=1)
-    return float(area[best >= np.cos(np.radians(degrees))].sum() / area.sum())

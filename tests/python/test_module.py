@@ -7,7 +7,8 @@ import pytest
 
 import gauss_core
 from conftest import SHARED_MESHES
-from meshes import aligned_share, icosphere, read_obj
+from meshes import icosphere, read_obj
+from measures import aligned_share
 
 
 def test_presets_are_all_constructible_and_normalized():

@@ -1,0 +1,25 @@
+"""Measurements shared by the module tests (tests/python) and the add-on tests (tests/blender).
+
+numpy only, so plain Python and Blender's Python both import it.
+"""
+import numpy as np
+
+
+def face_normals(V, F):
+    """Unit normals (#F,3) and twice the areas (#F,) of triangles F (#F,3) over vertices V (#V,3)."""
+    V = np.asarray(V, np.float64)
+    n = np.cross(V[F[:, 1]] - V[F[:, 0]], V[F[:, 2]] - V[F[:, 0]])
+    area = np.linalg.norm(n, axis=1)
+    return n / np.maximum(area, 1e-300)[:, None], area
+
+
+def aligned_share(V, F, directions, degrees=10.0, face_mask=None):
+    """Area-weighted share of the faces (of those in ``face_mask``, a (#F,) bool array, if given)
+    whose normal is within ``degrees`` of one of ``directions`` (#D,3, any length)."""
+    n, area = face_normals(V, F)
+    d = np.asarray(directions, np.float64)
+    d = d / np.linalg.norm(d, axis=1)[:, None]
+    aligned = (n @ d.T).max(axis=1) >= np.cos(np.radians(degrees))
+    if face_mask is not None:
+        area, aligned = area[face_mask], aligned[face_mask]
+    return float(area[aligned].sum() / area.sum())
