@@ -1,4 +1,9 @@
-"""Operators that edit the list of style slots and their custom normals."""
+"""Operators that edit the list of style slots and their custom normals.
+
+Both lists work alike: a collection, its owner and the owner's active index.
+``_StyleList`` and ``_NormalList`` say which list an operator edits (and when
+it can), ``_AddItem`` and ``_RemoveActive`` what it does to it.
+"""
 
 import bpy
 from bpy.props import EnumProperty
@@ -12,54 +17,83 @@ def _settings(context):
     return obj.gauss_stylization if obj is not None and obj.type == 'MESH' else None
 
 
-def _append(owner, collection, index_attr):
-    """Add an item to a UI list's collection and make it the active one."""
-    item = collection.add()
-    setattr(owner, index_attr, len(collection) - 1)
-    return item
+def _active_custom_slot(context):
+    settings = _settings(context)
+    if settings is None or not 0 <= settings.active_style_index < len(settings.styles):
+        return None
+    slot = settings.styles[settings.active_style_index]
+    return slot if slot.preset == CUSTOM else None
 
 
-def _remove_active(owner, collection, index_attr):
-    """Remove a UI list's active item; the next one (or the new last one) becomes active."""
-    index = getattr(owner, index_attr)
-    if not 0 <= index < len(collection):
-        return {'CANCELLED'}
-    collection.remove(index)
-    setattr(owner, index_attr, min(index, len(collection) - 1))
-    return {'FINISHED'}
-
-
-class _SlotOperator:
+class _StyleList:
     bl_options = {'REGISTER', 'UNDO', 'INTERNAL'}
 
     @classmethod
     def poll(cls, context):
         return poll_result(cls, None if _settings(context) is not None else "Select a mesh object first")
 
+    @staticmethod
+    def edited_list(context):
+        """(owner, collection, name of the owner's active-index property)"""
+        settings = _settings(context)
+        return settings, settings.styles, "active_style_index"
 
-class OBJECT_OT_gauss_style_add(_SlotOperator, bpy.types.Operator):
+
+class _NormalList(_StyleList):
+    @classmethod
+    def poll(cls, context):
+        return poll_result(cls, None if _active_custom_slot(context) is not None
+                           else "The active style slot is not set to Custom")
+
+    @staticmethod
+    def edited_list(context):
+        slot = _active_custom_slot(context)
+        return slot, slot.custom_normals, "active_normal_index"
+
+
+class _AddItem:
+    """Add an item (with its defaults) and make it the active one."""
+
+    def execute(self, context):
+        owner, collection, index_name = self.edited_list(context)
+        item = collection.add()
+        setattr(owner, index_name, len(collection) - 1)
+        self.name_item(item, len(collection))
+        return {'FINISHED'}
+
+    def name_item(self, item, count):
+        """Items keep their default name unless the list says otherwise."""
+
+
+class _RemoveActive:
+    """Remove the active item; the next one (or the new last one) becomes active."""
+
+    def execute(self, context):
+        owner, collection, index_name = self.edited_list(context)
+        index = getattr(owner, index_name)
+        if not 0 <= index < len(collection):
+            return {'CANCELLED'}
+        collection.remove(index)
+        setattr(owner, index_name, min(index, len(collection) - 1))
+        return {'FINISHED'}
+
+
+class OBJECT_OT_gauss_style_add(_StyleList, _AddItem, bpy.types.Operator):
     """Add a style slot (assign it a vertex group to style only that region)"""
     bl_idname = "object.gauss_style_add"
     bl_label = "Add Style"
 
-    def execute(self, context):
-        settings = _settings(context)
-        slot = _append(settings, settings.styles, "active_style_index")
-        slot.name = "Style %d" % len(settings.styles)
-        return {'FINISHED'}
+    def name_item(self, slot, count):
+        slot.name = "Style %d" % count
 
 
-class OBJECT_OT_gauss_style_remove(_SlotOperator, bpy.types.Operator):
+class OBJECT_OT_gauss_style_remove(_StyleList, _RemoveActive, bpy.types.Operator):
     """Remove the active style slot"""
     bl_idname = "object.gauss_style_remove"
     bl_label = "Remove Style"
 
-    def execute(self, context):
-        settings = _settings(context)
-        return _remove_active(settings, settings.styles, "active_style_index")
 
-
-class OBJECT_OT_gauss_style_move(_SlotOperator, bpy.types.Operator):
+class OBJECT_OT_gauss_style_move(_StyleList, bpy.types.Operator):
     """Move the active style slot (later slots win where regions overlap)"""
     bl_idname = "object.gauss_style_move"
     bl_label = "Move Style"
@@ -77,43 +111,19 @@ class OBJECT_OT_gauss_style_move(_SlotOperator, bpy.types.Operator):
         return {'FINISHED'}
 
 
-def _active_custom_slot(context):
-    settings = _settings(context)
-    if settings is None or not 0 <= settings.active_style_index < len(settings.styles):
-        return None
-    slot = settings.styles[settings.active_style_index]
-    return slot if slot.preset == CUSTOM else None
-
-
-class _NormalOperator(_SlotOperator):
-    @classmethod
-    def poll(cls, context):
-        return poll_result(cls, None if _active_custom_slot(context) is not None
-                           else "The active style slot is not set to Custom")
-
-
-class OBJECT_OT_gauss_normal_add(_NormalOperator, bpy.types.Operator):
+class OBJECT_OT_gauss_normal_add(_NormalList, _AddItem, bpy.types.Operator):
     """Add a preferred normal to the active custom style"""
     bl_idname = "object.gauss_normal_add"
     bl_label = "Add Normal"
 
-    def execute(self, context):
-        slot = _active_custom_slot(context)
-        _append(slot, slot.custom_normals, "active_normal_index").vector = (0.0, 0.0, 1.0)
-        return {'FINISHED'}
 
-
-class OBJECT_OT_gauss_normal_remove(_NormalOperator, bpy.types.Operator):
+class OBJECT_OT_gauss_normal_remove(_NormalList, _RemoveActive, bpy.types.Operator):
     """Remove the active normal of the active custom style"""
     bl_idname = "object.gauss_normal_remove"
     bl_label = "Remove Normal"
 
-    def execute(self, context):
-        slot = _active_custom_slot(context)
-        return _remove_active(slot, slot.custom_normals, "active_normal_index")
 
-
-class OBJECT_OT_gauss_normals_from_faces(_NormalOperator, bpy.types.Operator):
+class OBJECT_OT_gauss_normals_from_faces(_NormalList, bpy.types.Operator):
     """Add the normals of the faces selected in Edit Mode to the active custom style"""
     bl_idname = "object.gauss_normals_from_faces"
     bl_label = "From Selected Faces"
