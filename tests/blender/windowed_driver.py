@@ -22,17 +22,18 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
+ARGV = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+BUILD = os.path.abspath(ARGV[0] if ARGV else os.path.join(REPO, "build"))
+SHOTS = os.path.join(BUILD, "screenshots")
+os.environ["GAUSS_BUILD_DIR"] = BUILD  # helpers load the add-on from there
 sys.path.insert(0, HERE)
 from helpers import coords, key_coords, mesh_coords  # noqa: E402  (the same measurements as headless)
+from scene_kit import activate, import_obj  # noqa: E402  (helpers put blender_scenes on sys.path)
 # GAUSS_WINDOWED_MESH (relative to shared/meshes) runs the scenario on another mesh,
 # e.g. bunny/bun_zipper_35947.obj to see live tick times on 35K vertices.
 MESH = os.path.join(REPO, "..", "shared", "meshes",
                     os.environ.get("GAUSS_WINDOWED_MESH", "small/spot_triangulated_2930.obj"))
 TIME_LIMIT = 240.0  # seconds; run_windowed.sh also wraps Blender in `timeout`
-
-ARGV = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-BUILD = os.path.abspath(ARGV[0] if ARGV else os.path.join(REPO, "build"))
-SHOTS = os.path.join(BUILD, "screenshots")
 
 # Scripts given with -P run before the splash screen opens; turning it off here
 # keeps it out of the screenshot (factory startup: nothing is saved).
@@ -107,15 +108,6 @@ def same_shape(a, b):
                     for (na, ca, va), (nb, cb, vb) in zip(a[1], b[1])))
 
 
-def activate(name):
-    obj = bpy.data.objects[name]
-    for other in bpy.context.view_layer.objects:
-        other.select_set(False)
-    obj.select_set(True)
-    bpy.context.view_layer.objects.active = obj
-    return obj
-
-
 def push_undo(message):
     with override():
         bpy.ops.ed.undo_push(message=message)
@@ -176,19 +168,38 @@ def start_live_run():
         return bpy.ops.object.gauss_stylize('INVOKE_DEFAULT')
 
 
+def live_run(steps):
+    """Generator: start a live run from the 3D view and wait until it has done ``steps`` steps."""
+    start_live_run()
+    yield from wait_steps(steps)
+
+
+def goes_on(name, more=3):
+    """Generator: check ``name`` = the live run does ``more`` further steps."""
+    op = live_operator()
+    steps = op.session.steps if op else 0
+    yield from wait_steps(steps + more)
+    check(name, live_operator() is not None and live_operator().session.steps >= steps + more)
+
+
+def end_with(key, name, obj_name, expected):
+    """Generator: press ``key`` over the viewport, wait for the run to end, and check
+    ``name`` = it ended and ``obj_name``'s vertices equal ``expected`` bit for bit."""
+    press(key, *viewport_point())
+    yield from wait_stopped()
+    check(name, live_operator() is None and np.array_equal(coords(bpy.data.objects[obj_name]), expected))
+
+
 # -- scenario -----------------------------------------------------------------------
 
 def set_up():
-    sys.path.insert(0, os.path.join(BUILD, "addon"))
-    import gauss_stylization
+    import gauss_stylization  # helpers put BUILD/addon on sys.path
     gauss_stylization.register()
     bpy.utils.register_class(VIEW3D_PT_gauss_tab_probe)
     for obj in list(bpy.data.objects):
         if obj.type == 'MESH':
             bpy.data.objects.remove(obj)
-    bpy.ops.wm.obj_import(filepath=MESH)
-    obj = bpy.context.selected_objects[0]
-    bpy.context.view_layer.objects.active = obj
+    obj = import_obj(MESH)
     area, regions = view3d()
     area.spaces.active.show_region_ui = True
     with override():
@@ -236,8 +247,7 @@ def esc_cancels_and_restores(name):
 
 def enter_keeps_and_undo_restores(name):
     original = coords(bpy.data.objects[name])
-    start_live_run()
-    yield from wait_steps(10)
+    yield from live_run(10)
     yield from screenshot_panel()
     yield from wait_steps(20)
     op = live_operator()
@@ -263,17 +273,12 @@ def enter_keeps_and_undo_restores(name):
 
 def mouse_buttons(name):
     original = coords(bpy.data.objects[name])
-    start_live_run()
-    yield from wait_steps(3)
+    yield from live_run(3)
     press('LEFTMOUSE', *center(view3d()[1]['UI']))  # a click in the sidebar is for the panel
     yield 0.3
     check("left-click in the sidebar does not end the run", live_operator() is not None)
-    press('RIGHTMOUSE', *viewport_point())
-    yield from wait_stopped()
-    check("right-click in the viewport cancels and restores",
-          live_operator() is None and np.array_equal(coords(bpy.data.objects[name]), original))
-    start_live_run()
-    yield from wait_steps(3)
+    yield from end_with('RIGHTMOUSE', "right-click in the viewport cancels and restores", name, original)
+    yield from live_run(3)
     press('LEFTMOUSE', *viewport_point())
     yield from wait_stopped()
     check("left-click in the viewport keeps the result",
@@ -286,15 +291,10 @@ def undo_keys_are_swallowed(name):
     set_marker(2)
     original = coords(bpy.data.objects[name])
     for ending in ('ESC', 'RET'):
-        start_live_run()
-        yield from wait_steps(3)
+        yield from live_run(3)
         press('Z', *viewport_point(), ctrl=True)
         press('Z', *viewport_point(), ctrl=True, shift=True)
-        op = live_operator()
-        steps = op.session.steps if op else 0
-        yield from wait_steps(steps + 3)
-        check("Ctrl+Z and Ctrl+Shift+Z during a run leave it running (then %s)" % ending,
-              live_operator() is not None and live_operator().session.steps >= steps + 3)
+        yield from goes_on("Ctrl+Z and Ctrl+Shift+Z during a run leave it running (then %s)" % ending)
         check("Ctrl+Z and Ctrl+Shift+Z during a run undo/redo nothing (then %s)" % ending,
               marker() == 2, "marker=%s" % marker())
         changed = not np.array_equal(coords(bpy.data.objects[name]), original)
@@ -323,8 +323,7 @@ def edit_menu_undo_mid_run(name):
     set_marker(4)
     new_reports()
     original = coords(bpy.data.objects[name])
-    start_live_run()
-    yield from wait_steps(5)
+    yield from live_run(5)
     changed = not np.array_equal(coords(bpy.data.objects[name]), original)
     with override():
         bpy.ops.ed.undo()  # what the Edit > Undo menu item runs
@@ -355,7 +354,7 @@ def make_keyed_copy(name):
     smile.data.foreach_set("co", (key_coords(smile) + np.float32(0.05)).reshape(-1))
     smile.value = 0.5
     obj.active_shape_key_index = 0
-    activate(obj.name)
+    activate(obj)
     push_undo("Keyed copy")
     return obj.name
 
@@ -365,8 +364,7 @@ def keyed_mesh_esc_restores(keyed):
         obj = bpy.data.objects[keyed]
         obj.gauss_stylization.output = output
         before = shape(obj)
-        start_live_run()
-        yield from wait_steps(5)
+        yield from live_run(5)
         changed = not same_shape(shape(bpy.data.objects[keyed]), before)
         press('ESC', *viewport_point())
         yield from wait_stopped()
@@ -380,23 +378,14 @@ def shape_keys_deleted_mid_run(keyed):
     obj = bpy.data.objects[keyed]
     obj.gauss_stylization.output = 'MESH'
     original = coords(obj)
-    start_live_run()
-    yield from wait_steps(3)
+    yield from live_run(3)
     with override():
         bpy.ops.object.shape_key_remove(all=True)
-    op = live_operator()
-    steps = op.session.steps if op else 0
-    yield from wait_steps(steps + 3)
-    check("deleting the shape keys during a Mesh-output run lets it go on",
-          live_operator() is not None and live_operator().session.steps >= steps + 3)
-    press('ESC', *viewport_point())
-    yield from wait_stopped()
-    check("Esc then restores the vertices bit-exactly",
-          live_operator() is None and np.array_equal(coords(bpy.data.objects[keyed]), original))
+    yield from goes_on("deleting the shape keys during a Mesh-output run lets it go on")
+    yield from end_with('ESC', "Esc then restores the vertices bit-exactly", keyed, original)
 
     obj.gauss_stylization.output = 'SHAPE_KEY'
-    start_live_run()
-    yield from wait_steps(3)
+    yield from live_run(3)
     with override():
         bpy.ops.object.shape_key_remove(all=True)
     yield from wait_stopped()
@@ -416,8 +405,7 @@ def object_removed_by_script_mid_run(keyed):
     obj.gauss_stylization.output = 'SHAPE_KEY'
     mesh_name, original = obj.data.name, coords(obj)
     objects = len(bpy.data.objects)
-    start_live_run()
-    yield from wait_steps(5)
+    yield from live_run(5)
     changed = bpy.data.objects[keyed].data.shape_keys is not None
     bpy.data.objects.remove(bpy.data.objects[keyed])  # (this generator step is a bpy.app.timers callback)
     yield from wait_stopped()
@@ -433,11 +421,10 @@ def object_removed_by_script_mid_run(keyed):
 
 def delete_key_mid_run(name):
     """The artist presses Delete over the viewport during a run, then Ctrl+Z."""
-    activate(name)
+    activate(bpy.data.objects[name])
     push_undo("Before Delete")
     original = coords(bpy.data.objects[name])
-    start_live_run()
-    yield from wait_steps(5)
+    yield from live_run(5)
     press('DEL', *viewport_point())
     yield from wait_stopped()
     yield 0.2
@@ -459,7 +446,7 @@ def viewport_closed_mid_run(name):
         bpy.ops.screen.area_split(direction='VERTICAL', factor=0.5)
     views = [a for a in window().screen.areas if a.type == 'VIEW_3D']
     check("a second 3D view was opened", len(views) == 2)
-    activate(name)
+    activate(bpy.data.objects[name])
     original = coords(bpy.data.objects[name])
     run_in = views[-1]
     region = next(r for r in run_in.regions if r.type == 'WINDOW')
@@ -468,30 +455,18 @@ def viewport_closed_mid_run(name):
     yield from wait_steps(3)
     with bpy.context.temp_override(window=window(), area=run_in):
         bpy.ops.screen.area_close()
-    op = live_operator()
-    steps = op.session.steps if op else 0
-    yield from wait_steps(steps + 3)
-    check("closing the run's 3D view lets the run go on",
-          live_operator() is not None and live_operator().session.steps >= steps + 3)
-    press('ESC', *viewport_point())
-    yield from wait_stopped()
-    check("Esc then restores the mesh bit-exactly",
-          live_operator() is None and np.array_equal(coords(bpy.data.objects[name]), original))
+    yield from goes_on("closing the run's 3D view lets the run go on")
+    yield from end_with('ESC', "Esc then restores the mesh bit-exactly", name, original)
 
 
 def save_and_reopen_mid_run(name):
     path = os.path.join(tempfile.mkdtemp(prefix="gauss_windowed_"), "mid_run.blend")
-    activate(name)
-    start_live_run()
-    yield from wait_steps(5)
+    activate(bpy.data.objects[name])
+    yield from live_run(5)
     saved = coords(bpy.data.objects[name])
     with bpy.context.temp_override(window=window()):
         bpy.ops.wm.save_as_mainfile(filepath=path)
-    op = live_operator()
-    steps = op.session.steps if op else 0
-    yield from wait_steps(steps + 3)
-    check("saving during a run lets the run go on",
-          live_operator() is not None and live_operator().session.steps >= steps + 3)
+    yield from goes_on("saving during a run lets the run go on")
     with bpy.context.temp_override(window=window()):
         bpy.ops.wm.open_mainfile(filepath=path)
     check("opening a file during a run ends the run", live_operator() is None)
@@ -500,13 +475,10 @@ def save_and_reopen_mid_run(name):
     reopened = coords(obj) if obj is not None else None
     check("the reopened file holds exactly the (finite) mesh that was saved",
           reopened is not None and np.isfinite(reopened).all() and np.array_equal(reopened, saved))
-    activate(name)
+    activate(bpy.data.objects[name])
     check("a new run starts in the reopened file", start_live_run() == {'RUNNING_MODAL'})
     yield from wait_steps(3)
-    press('ESC', *viewport_point())
-    yield from wait_stopped()
-    check("Esc in the reopened file restores the mesh bit-exactly",
-          live_operator() is None and np.array_equal(coords(bpy.data.objects[name]), saved))
+    yield from end_with('ESC', "Esc in the reopened file restores the mesh bit-exactly", name, saved)
     os.remove(path)
 
 
