@@ -13,7 +13,8 @@ BUILD_DIR/addon/gauss_stylization/gauss_core*.so). Writes two zips to OUT_DIR:
 
 TAG names the Python the module was built for (e.g. cp311-linux_x86_64): the zip only
 works in a Blender that runs that Python version. The add-on's Python files come from
-python_addon/gauss_stylization/ (never stale), the .so from the build. The zips are
+python_addon/gauss_stylization/ (never stale), the .so and core_facts.json (the solver's
+defaults, limits and presets, which the add-on reads when the .so cannot load) from the build. The zips are
 reproducible (sorted entries, fixed timestamps).
 
 --verify-install installs the legacy zip into a throw-away Blender user configuration
@@ -82,8 +83,11 @@ def addon_files(so_path):
             files.append((os.path.join(SOURCE, name), name))
     if not any(name == "__init__.py" for _, name in files):
         fail("no __init__.py in %s" % SOURCE)
-    files.append((so_path, os.path.basename(so_path)))
-    return files
+    facts = os.path.join(os.path.dirname(so_path), "core_facts.json")
+    if not os.path.isfile(facts):
+        fail("no core_facts.json next to %s: rebuild (bash scripts/build.sh)" % so_path)
+    files += [(facts, "core_facts.json"), (so_path, os.path.basename(so_path))]
+    return sorted(files, key=lambda entry: entry[1])
 
 
 def write_zip(path, entries):
