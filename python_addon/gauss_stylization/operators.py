@@ -12,7 +12,8 @@ from .validation import object_problem, poll_result
 from .viewport import existing_area, over_viewport, redraw_viewports
 
 TICK_SECONDS = 0.01
-HINT = "Enter / Left-click: keep  |  Esc / Right-click: cancel"
+KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel")  # what modal() does with keys
+HINT = "  |  ".join(KEY_HINTS)
 _STEPS = schema.field(schema.OBJECT, "iterations")
 
 

@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import native, runs, schema
+from . import native, operators, runs, schema
 from .errors import NativeModuleError
 from .fields import Panel
 
@@ -56,8 +56,8 @@ class VIEW3D_PT_gauss_stylization(_GaussPanel, bpy.types.Panel):
         if runs.is_running(obj):
             box = layout.box().column(align=True)
             box.label(text="Stylizing live", icon='TIME')
-            box.label(text="Enter / Left-click: keep")
-            box.label(text="Esc / Right-click: cancel")
+            for hint in operators.KEY_HINTS:
+                box.label(text=hint)
         row = layout.row(align=True)
         row.scale_y = 1.5
         row.operator("object.gauss_stylize", icon='PLAY')

@@ -7,6 +7,8 @@ the next numbers (the registry gauss_core.PRESETS only appends).
 """
 
 import bpy
+import numpy as np
+import pytest
 
 import helpers
 
@@ -46,3 +48,14 @@ def test_a_file_with_the_saved_numbers_opens_with_the_same_presets(tmp_path):
     bpy.ops.wm.open_mainfile(filepath=path, load_ui=False)
     slots = bpy.data.objects["Sphere"].gauss_stylization.styles
     assert [(slot.name, slot.preset) for slot in slots] == [(name, name) for name, _ in shuffled]
+
+
+def test_a_preset_number_this_version_does_not_know_is_refused_by_name():
+    # E.g. a file saved by a later version whose solver has more presets.
+    obj = helpers.suzanne(levels=0)
+    helpers.add_slot(obj, 'CUBE', name="Later")
+    obj["gauss_stylization"]["styles"][0]["preset"] = 50
+    before = helpers.coords(obj)
+    with pytest.raises(RuntimeError, match="Style 'Later': Style holds a value this version does not know"):
+        bpy.ops.object.gauss_stylize(iterations=3)
+    assert np.array_equal(helpers.coords(obj), before)
