@@ -17,12 +17,14 @@ bl_info = {
 # Bottom of the import order first: each module imports only modules listed before it.
 if "bpy" in locals():  # F8 / script reload: reload the submodules too
     import importlib
-    for _module in (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
-                    rest_store, settings_io, session, runs, viewport, operators, slot_operators, ui):
+    for _module in (errors, native, fields, schema, properties, mesh_io, source, styles, validation,
+                    output, rest_store, settings_io, session, runs, viewport, operators,
+                    slot_operators, ui):
         importlib.reload(_module)
 else:
-    from . import (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
-                   rest_store, settings_io, session, runs, viewport, operators, slot_operators, ui)
+    from . import (errors, native, fields, schema, properties, mesh_io, source, styles, validation,
+                   output, rest_store, settings_io, session, runs, viewport, operators,
+                   slot_operators, ui)
 
 import bpy
 

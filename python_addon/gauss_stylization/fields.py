@@ -11,7 +11,8 @@ import math
 
 import numpy as np
 from bpy.props import (
-    CollectionProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty, StringProperty,
+    BoolProperty, CollectionProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty,
+    StringProperty,
 )
 
 from . import native
@@ -136,6 +137,17 @@ class Int(_Number):
         """label, tooltip: for another property of the same range (an operator's)."""
         return IntProperty(name=label or self.label, description=tooltip or self.tooltip, default=self.default,
                            min=self.hard[0], max=self.hard[1], soft_min=self.soft[0], soft_max=self.soft[1])
+
+
+class Bool(Field):
+    """A checkbox."""
+
+    def __init__(self, name, label, tooltip, default=False, **options):
+        super().__init__(name, label, tooltip, **options)
+        self.default = bool(default)
+
+    def prop(self, _classes):
+        return BoolProperty(name=self.label, description=self.tooltip, default=self.default)
 
 
 class Choice(Field):

@@ -13,13 +13,14 @@ solver call for slot fields (styles.make_style); see python_addon/README.md.
 
 from . import native
 from .fields import (
-    Choice, Direction, Euler, Float, Index, Int, Live, Normals, Panel, Slots, Text, VertexGroup,
+    Bool, Choice, Direction, Euler, Float, Index, Int, Live, Normals, Panel, Slots, Text, VertexGroup,
 )
 
 FACTS = native.facts()
 CUSTOM = 'CUSTOM'
 REGION_THRESHOLD = 0.5  # a face is in a slot's region when its vertex weights average above this
 PIN_THRESHOLD = 0.5     # a vertex is pinned when its pin-group weight is above this
+NEW_OBJECT_SUFFIX = "_stylized"  # New Object output: '<name>_stylized'
 CUSTOM_NUMBER = 99  # enum number of Custom in saved files; presets are numbered 0, 1, ... in PRESETS order
 
 
@@ -89,10 +90,14 @@ OBJECT = (
         live=Live.SETTER, panel=Panel.SOLVER),
     Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode",
         default=100, hard=(0, 100000), panel=Panel.SOLVER),
+    Bool("use_modifiers", "Use Modifiers", "Stylize the mesh as it is shown: modifiers, armature and shape "
+         "keys at the current frame (otherwise the base mesh, under the modifiers)", panel=Panel.MAIN),
     Choice("output", "Output", "Where the stylized coordinates go",
            (('MESH', "Mesh", "Move the vertices of the mesh itself", 0),
             ('SHAPE_KEY', "Shape Key",
-             "Write the result into the shape key 'Gauss Stylized' to blend it with its slider", 1)),
+             "Write the result into the shape key 'Gauss Stylized' to blend it with its slider", 1),
+            ('NEW_OBJECT', "New Object", "Put the result into a new object '<name>%s' (same collection, "
+             "transform and materials); the original stays as it is" % NEW_OBJECT_SUFFIX, 2)),
            'MESH', panel=Panel.MAIN),
     VertexGroup("pin_group", "Pin Group", "Vertices in this group (weight above %g) keep their position"
                 % PIN_THRESHOLD, live=Live.PINS, panel=Panel.MAIN),

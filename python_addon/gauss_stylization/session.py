@@ -10,7 +10,7 @@ import time
 
 import numpy as np
 
-from . import mesh_io, native, output, rest_store, schema, styles
+from . import native, output, rest_store, schema, source as sources, styles
 from .errors import SettingsError
 from .fields import Live, changes
 from .settings_io import add_slot, to_dict
@@ -27,28 +27,36 @@ def ensure_style_slot(settings):
 
 
 class Session:
-    def __init__(self, obj):
+    """source: what to stylize (source.Source; default: read from ``obj`` by its Use Modifiers);
+    target: where results go (default: ``obj``'s Output, output.make_target)."""
+
+    def __init__(self, obj, source=None, target=None):
         self.obj = obj
         self.mesh = obj.data
         self.gauss_core = native.core()
         check_object(obj)
-        self.arrays = mesh_io.MeshArrays(self.mesh)
-        check_coordinates(obj, self.arrays.coords)
-        self.weights = mesh_io.read_group_weights(obj)
         settings = obj.gauss_stylization
-        check_settings(obj, settings, self.weights)
-        self.target = output.make_target(obj, self.arrays.num_vertices)
-        # The settings the solver runs with (settings_io.to_dict); a tick compares them
-        # with the panel's to find what changed, and each change does what its field's
-        # Live says (schema.py): so no setting can be missed.
-        self.applied = to_dict(settings)
-        self.solver = self._make_solver(settings)
-        # The solver writes its result straight into this buffer every step.
-        self.result = np.empty_like(self.arrays.coords)
-        self.finite = np.empty(self.result.shape, bool)  # preallocated: a tick allocates nothing
-        self.steps = 0
-        self.step_ms = []
-        self.target.prepare()  # first change to the object: everything above succeeded
+        if source is None:
+            source = sources.read(obj, settings.use_modifiers)
+        try:
+            self.arrays = source.arrays
+            check_coordinates(obj, self.arrays.coords)
+            self.weights = source.weights
+            check_settings(obj, settings, self.weights)
+            self.target = target or output.make_target(obj, source)
+            # The settings the solver runs with (settings_io.to_dict); a tick compares them
+            # with the panel's to find what changed, and each change does what its field's
+            # Live says (schema.py): so no setting can be missed.
+            self.applied = to_dict(settings)
+            self.solver = self._make_solver(settings)
+            # The solver writes its result straight into this buffer every step.
+            self.result = np.empty_like(self.arrays.coords)
+            self.finite = np.empty(self.result.shape, bool)  # preallocated: a tick allocates nothing
+            self.steps = 0
+            self.step_ms = []
+            self.target.prepare()  # first change to the object: everything above succeeded
+        finally:
+            source.release()  # the evaluated copy, unless the target took it over
 
     def _make_solver(self, settings):
         pins = styles.pinned_vertices(self.weights, settings.pin_group)
@@ -121,26 +129,20 @@ class Session:
 
     def keep(self):
         """Keep the result; remember the start coordinates for the Reset operator."""
-        rest_store.capture(self.mesh, self.arrays.coords, self.target.kind)
+        self.target.keep()
+        rest_store.capture(*self.target.rest)
 
     def cancel(self):
         """Put back exactly what was there before the run, as far as it still exists.
 
         The mesh is restored even when its object was deleted during the run:
         another object may share it, and undo reuses the mesh as it is in memory.
-        A freed mesh, or one whose vertex count changed, is left alone.
+        A freed mesh, or one whose vertex count changed, is left alone (output.py).
         """
-        if self.mesh_alive():
-            self.target.restore()
-
-    def mesh_alive(self):
-        try:
-            return len(self.mesh.vertices) == self.arrays.num_vertices
-        except ReferenceError:  # the mesh was freed (deleted, undo, file load)
-            return False
+        self.target.restore()
 
     def object_alive(self):
         try:
-            return self.obj.data == self.mesh and self.mesh_alive()
+            return self.obj.data == self.mesh and self.target.alive()
         except ReferenceError:  # the object or mesh was deleted while running
             return False
