@@ -34,6 +34,7 @@ class Panel(enum.Enum):
     STYLES = "styles"   # Styles sub-panel, under the slot list
     SLOT = "slot"       # Styles sub-panel, the active slot's settings
     SOLVER = "solver"   # Solver sub-panel
+    BAKE = "bake"       # Bake sub-panel (bake_ui.py)
 
 
 class Where:

@@ -31,17 +31,23 @@ def start_session(operator, context):
     if others:
         operator.report({'INFO'}, "Stylizing only the active object '%s' (%d other objects selected)"
                         % (obj.name, len(others)))
+    return start_with_style(operator, obj, lambda: Session(obj))
+
+
+def start_with_style(operator, obj, start, errors=(SettingsError, NativeModuleError)):
+    """``start()`` (a run's or a bake's set-up) on ``obj``, with a default style slot added first if it
+    has none. On one of ``errors`` report it and return None."""
     added = ensure_style_slot(obj.gauss_stylization)
     try:
-        session = Session(obj)
-    except (SettingsError, NativeModuleError) as exc:
+        started = start()
+    except errors as exc:
         if added:  # a failed start changes nothing, settings included
             obj.gauss_stylization.styles.remove(0)
         operator.report({'ERROR'}, str(exc))
         return None
     if added:
         operator.report({'INFO'}, "No style slot yet: added a %s style" % obj.gauss_stylization.styles[0].name)
-    return session
+    return started
 
 
 class OBJECT_OT_gauss_stylize(bpy.types.Operator):

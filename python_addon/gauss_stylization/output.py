@@ -19,7 +19,7 @@ pointer, and writing through it crashed Blender.
 import bpy
 import numpy as np
 
-from . import mesh_io, schema
+from . import cache_modifier, mesh_io, schema
 from .errors import SettingsError
 
 SHAPE_KEY_NAME = "Gauss Stylized"
@@ -205,6 +205,8 @@ class NewObjectTarget:
         new.name = name
         if self.source.evaluated:
             new.modifiers.clear()  # already applied in the mesh
+        else:
+            cache_modifier.remove(new)  # would replay a bake over the stylized mesh
         for collection in original.users_collection:
             collection.objects.link(new)
         self.obj, self.mesh = new, mesh

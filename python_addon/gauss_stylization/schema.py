@@ -105,6 +105,9 @@ OBJECT = (
            (('FIRST_SLOT', "First Style", "Faces outside every style's group use the first style", 0),
             ('UNSTYLED', "Unstyled", "Faces outside every style's group only keep their shape", 1)),
            'FIRST_SLOT', live=Live.REGIONS, panel=Panel.STYLES, text="Other Faces"),
+    Int("bake_steps", "Bake Steps", "Solver steps per frame of an animation bake (with Warm Start the "
+        "first frame runs Script Steps, the others continue from the previous frame)",
+        default=10, hard=(1, 100000), soft=(1, 200), panel=Panel.BAKE),
     Slots("styles", "Styles", "GaussStyleSlot", SLOT, owner_name=lambda slot: "Style '%s'" % slot.name),
     Index("active_style_index", "Active Style"),
 )

@@ -113,6 +113,11 @@ class Session:
             for field in schema.SOLVER_SETTERS:
                 setattr(solver, field.name, field.read(settings))
 
+    def start_from(self, coords):
+        """Continue from ``coords`` ((#V,3)) instead of the current shape: the rest shape and the
+        factorization stay (a warm start, see bake.py)."""
+        self.solver.set_vertices(coords)
+
     def step(self, count=1):
         """Run ``count`` solver iterations and write the result to the target."""
         start = time.perf_counter()
