@@ -37,6 +37,7 @@ class _BakeOperator:
 
     # One undo step takes the modifier away again (the file stays); the redo panel re-bakes.
     bl_options = {'REGISTER', 'UNDO'}
+    panel_hints = ("Baking to a point cache", ("Esc: cancel (nothing is written)",))  # the main panel's box
 
     @classmethod
     def poll(cls, context):
@@ -100,7 +101,7 @@ class _BakeOperator:
         self._progress.update(self._job.done)
         self._timer = context.window_manager.event_timer_add(TICK_SECONDS, window=context.window)
         context.window_manager.modal_handler_add(self)
-        runs.start(context.active_object, self)
+        runs.start(self._job.obj, self)
         return {'RUNNING_MODAL'}
 
     def modal(self, context, event):

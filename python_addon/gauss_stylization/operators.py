@@ -112,7 +112,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         window_manager = context.window_manager
         self._timer = window_manager.event_timer_add(TICK_SECONDS, window=context.window)
         window_manager.modal_handler_add(self)
-        runs.start(context.active_object, self)
+        runs.start(session.obj, self)
         self._show_status(context)
         return {'RUNNING_MODAL'}
 

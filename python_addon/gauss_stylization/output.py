@@ -181,9 +181,10 @@ class NewObjectTarget:
     mesh is the evaluated copy the source read (every layer kept) and it has no modifiers (they
     are in the mesh); otherwise its mesh is a copy of the base mesh and it keeps the modifiers.
 
-    The original's data is never written. While a live run goes on the original is hidden in the
-    viewport so the result can be seen; keep() shows it again and selects the new object,
-    restore() removes the new object and its mesh."""
+    The original's data is never written. While a live run goes on the original is drawn as a
+    wireframe, so the result can be seen through it (hiding it would leave the panel without an
+    active object); keep() draws it as before and selects the new object, restore() removes the
+    new object and its mesh."""
 
     kind = 'NEW_OBJECT'
 
@@ -192,7 +193,7 @@ class NewObjectTarget:
         self.source = source
         self.obj = self.mesh = None
         self.num_vertices = source.arrays.num_vertices
-        self.was_hidden = obj.hide_get()
+        self.display_type = obj.display_type
         self.rest = None  # set by prepare(): (new mesh, its start coordinates, 'MESH')
 
     def prepare(self):
@@ -209,9 +210,11 @@ class NewObjectTarget:
             cache_modifier.remove(new)  # would replay a bake over the stylized mesh
         for collection in original.users_collection:
             collection.objects.link(new)
+        _select(new, False)  # linking copies the original's selection; it is selected when kept
         self.obj, self.mesh = new, mesh
         self.rest = (mesh, self.source.arrays.coords, MeshTarget.kind)
-        _set_hidden(original, True)
+        new.display_type = self.display_type
+        original.display_type = 'WIRE'
 
     def write(self, coords):
         _write_shown_coords(self.mesh, coords)
@@ -223,13 +226,10 @@ class NewObjectTarget:
             return False
 
     def keep(self):
-        _set_hidden(self.original, self.was_hidden)
-        try:
-            self.original.select_set(False)
-            self.obj.select_set(True)
+        self._show_original()
+        _select(self.original, False)
+        if _select(self.obj, True):
             bpy.context.view_layer.objects.active = self.obj
-        except (RuntimeError, ReferenceError):  # not in this view layer (an excluded collection)
-            pass
 
     def restore(self):
         """Remove what the run created (as far as it still exists) and show the original again."""
@@ -240,15 +240,22 @@ class NewObjectTarget:
             except ReferenceError:  # already deleted by the artist
                 pass
         self.obj = self.mesh = None
-        _set_hidden(self.original, self.was_hidden)
+        self._show_original()
+
+    def _show_original(self):
+        try:
+            self.original.display_type = self.display_type
+        except ReferenceError:  # deleted during the run
+            pass
 
 
-def _set_hidden(obj, hidden):
+def _select(obj, state):
+    """Select or deselect ``obj`` in the current view layer; False if it is not in it."""
     try:
-        if obj.hide_get() != hidden:
-            obj.hide_set(hidden)
-    except (RuntimeError, ReferenceError):  # deleted, or not in this view layer
-        pass
+        obj.select_set(state)
+    except (RuntimeError, ReferenceError):  # not in this view layer (an excluded collection), or deleted
+        return False
+    return True
 
 
 def make_target(obj, source):

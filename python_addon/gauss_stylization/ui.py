@@ -53,10 +53,12 @@ class VIEW3D_PT_gauss_stylization(_GaussPanel, bpy.types.Panel):
             return
         if len(context.selected_objects) > 1:
             layout.label(text="Only the active object '%s' is stylized" % obj.name, icon='INFO')
-        if runs.is_running(obj):
+        run = runs.running.get(obj.as_pointer())
+        if run is not None:  # a live Stylize, or a bake (bake_operators.py) says what it is doing
+            title, hints = getattr(run, "panel_hints", ("Stylizing live", operators.KEY_HINTS))
             box = layout.box().column(align=True)
-            box.label(text="Stylizing live", icon='TIME')
-            for hint in operators.KEY_HINTS:
+            box.label(text=title, icon='TIME')
+            for hint in hints:
                 box.label(text=hint)
         row = layout.row(align=True)
         row.scale_y = 1.5

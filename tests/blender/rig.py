@@ -10,10 +10,10 @@ import helpers
 BEND_DEGREES = 60.0
 
 
-def bent_capsule(frames=(1, 10)):
+def bent_capsule(frames=(1, 10), segments=(24, 16)):
     """A stretched UV sphere (z from -2 to 2) skinned to bones Lower and Upper; Upper bends about X
     from 0 at frames[0] to BEND_DEGREES at frames[1] (linear), so every frame has another shape."""
-    obj = helpers.uv_sphere(24, 16)
+    obj = helpers.uv_sphere(*segments)
     obj.name = "Capsule"
     co = helpers.coords(obj)
     co[:, 2] *= 2.0

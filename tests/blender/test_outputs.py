@@ -70,7 +70,7 @@ def test_new_object_has_the_collection_transform_and_materials(addon, use_modifi
     assert np.allclose(np.array(new.matrix_world), np.array(obj.matrix_world), atol=0)
     assert [s.material.name for s in new.material_slots] == ["Red", "Green"]
     assert [s.link for s in new.material_slots] == ['DATA', 'OBJECT']
-    assert not obj.hide_get() and not new.hide_get()
+    assert obj.display_type == new.display_type == 'TEXTURED'  # wireframe only during a run
     assert obj.data.users == 1  # not a linked duplicate: the original keeps its own mesh
 
 
@@ -153,3 +153,34 @@ def test_reset_of_a_new_object_puts_its_start_shape_back(addon):
     new = bpy.context.active_object
     assert bpy.ops.object.gauss_stylize_reset() == {'FINISHED'}
     assert np.array_equal(helpers.coords(new), shown)
+
+
+def _new_object_run(addon, obj):
+    settings = obj.gauss_stylization
+    settings.use_modifiers, settings.output = True, 'NEW_OBJECT'
+    addon.session.ensure_style_slot(settings)
+    return addon.session.Session(obj)
+
+
+def test_a_cancelled_new_object_run_leaves_nothing_behind(addon):
+    obj = _subdivided_suzanne()
+    counts, start = (len(bpy.data.objects), len(bpy.data.meshes)), helpers.coords(obj)
+    run = _new_object_run(addon, obj)
+    run.step(3)
+    new = bpy.data.objects["Suzanne_stylized"]
+    assert obj.display_type == 'WIRE' and new.display_type == 'TEXTURED'  # the result is seen through it
+    assert obj.select_get() and not new.select_get()  # the panel still shows the original's settings
+    assert run.object_alive()
+    run.cancel()
+    assert (len(bpy.data.objects), len(bpy.data.meshes)) == counts
+    assert obj.display_type == 'TEXTURED' and np.array_equal(helpers.coords(obj), start)
+
+
+def test_the_new_object_deleted_mid_run_stops_it(addon):
+    obj = _subdivided_suzanne()
+    run = _new_object_run(addon, obj)
+    run.step(2)
+    bpy.data.objects.remove(bpy.data.objects["Suzanne_stylized"])
+    assert not run.object_alive()
+    run.cancel()  # removes the orphaned mesh, touches no freed data
+    assert "Suzanne_stylized" not in bpy.data.meshes and obj.display_type == 'TEXTURED'
