@@ -126,7 +126,7 @@ class Solver {
                                             static_cast<int>(f.size() / 3), pins,
                                             targets.empty() ? nullptr : targets.data(), lam);
     solver_->set_admm_iterations(admm_iterations);
-    styles_.push_back(make_style(settings::default_preset, gauss::preset_style(settings::default_preset)));
+    styles_.push_back(make_style(settings::default_preset, gauss::default_style()));
   }
 
   void set_styles(const std::vector<Style>& styles) {
