@@ -77,11 +77,14 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
       ++referenced;
     }
   scale_ = (hi - lo).maxCoeff();
-  // Headroom: results leave the bounding box (pins up to 1e12 sizes away), and near 1e308 the output
-  // x * scale + center overflowed to infinity.
-  if (!(scale_ > 1e-300) || !(lo.minCoeff() >= -1e200 && hi.maxCoeff() <= 1e200) || !sum.allFinite())
-    throw std::invalid_argument(
-        "the mesh's extent is zero or too large to represent (all vertices at one point, or coordinates beyond +-1e200)");
+  // Headroom: results leave the bounding box (pins up to settings::max_pin_distance sizes away).
+  if (!(scale_ > 1e-300) || !(lo.minCoeff() >= -settings::max_coordinate && hi.maxCoeff() <= settings::max_coordinate) ||
+      !sum.allFinite()) {
+    std::ostringstream msg;
+    msg << "the mesh's extent is zero or too large to represent (all vertices at one point, or coordinates beyond +-"
+        << settings::max_coordinate << ")";
+    throw std::invalid_argument(msg.str());
+  }
   // Clamped into the bounding box: a centroid rounded outside it (all x equal, far from the origin)
   // put the normalized mesh ~1e263 from the origin, and every later sum lost all precision.
   center_ = (sum / referenced).cwiseMax(lo).cwiseMin(hi);

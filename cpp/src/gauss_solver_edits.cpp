@@ -85,10 +85,10 @@ std::vector<Vector3d> GaussSolver::checked_pin_targets(const std::vector<int64_t
       msg << "the target of pinned vertex " << v << " is NaN or infinite";
       throw std::invalid_argument(msg.str());
     }
-    // Farther out, squared edge lengths overflow (~1e150 mesh sizes) and E_ARAP turns infinite.
-    if (!((targets[i] - center_).cwiseAbs().maxCoeff() <= 1e12 * scale_)) {
+    if (!((targets[i] - center_).cwiseAbs().maxCoeff() <= settings::max_pin_distance * scale_)) {
       std::ostringstream msg;
-      msg << "the target of pinned vertex " << v << " is too far from the mesh (more than 1e12 times its size)";
+      msg << "the target of pinned vertex " << v << " is too far from the mesh (more than "
+          << settings::max_pin_distance << " times its size)";
       throw std::invalid_argument(msg.str());
     }
   }

@@ -37,9 +37,10 @@ struct StepTimings {  // milliseconds spent in each phase of the last step
 
 class GaussSolver {
  public:
-  // V: num_vertices by 3 row-major coordinates; F: num_faces by 3 row-major vertex indices.
+  // V: num_vertices by 3 row-major coordinates (those of vertices that faces use within
+  // +-settings::max_coordinate); F: num_faces by 3 row-major vertex indices.
   // pinned: #P distinct vertex indices; pin_positions: #P by 3 targets (nullptr: the rest positions),
-  // within 1e12 times the mesh's size of it. lambda: settings::lambda.
+  // within settings::max_pin_distance times the mesh's size of it. lambda: settings::lambda.
   // Throws std::invalid_argument on bad input (message says what is wrong).
   GaussSolver(const double* V, int num_vertices, const int64_t* F, int num_faces,
               const std::vector<int64_t>& pinned = {}, const double* pin_positions = nullptr,
@@ -59,7 +60,7 @@ class GaussSolver {
   // A new set of pins (as in the constructor); re-factors. The pins move to their targets now.
   void set_pins(const std::vector<int64_t>& pinned, const double* pin_positions = nullptr);
   // New targets for the current pins, without re-factoring: pin_positions is count by 3, in the order
-  // of pinned(), count == #P, each target finite and within 1e12 times the mesh's size of it. The pins
+  // of pinned(), count == #P, each target finite and within settings::max_pin_distance mesh sizes. The pins
   // move to their targets now; the rest of the mesh follows at the next step. Throws
   // std::invalid_argument (and changes nothing) otherwise.
   void set_pin_positions(const double* pin_positions, int count);
@@ -93,7 +94,7 @@ class GaussSolver {
   void assemble_rhs();
   // The targets (caller's frame) of the given pins (#P, caller's numbering) from #P by 3 positions
   // (nullptr: the rest positions); throws unless the pins are distinct vertices and every target is
-  // finite and within 1e12 times the mesh's size of it.
+  // finite and within settings::max_pin_distance times the mesh's size of it.
   std::vector<Eigen::Vector3d> checked_pin_targets(const std::vector<int64_t>& pinned, const double* positions) const;
   std::vector<Eigen::Vector3d> to_solver_frame(const std::vector<Eigen::Vector3d>& caller) const;
   Eigen::Vector3d to_caller(const Eigen::Vector3d& x) const { return x * scale_ + center_; }
