@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -152,6 +153,29 @@ class Solver {
     read_pins(pinned, positions, pins, targets);
     std::lock_guard<std::mutex> lock(mutex_);
     solver_->set_pins(pins, targets.empty() ? nullptr : targets.data());
+  }
+  void set_pin_positions(const py::object& positions) {
+    const size_t num_pins = solver_->pinned().size();
+    py::array arr = as_array(positions, "positions");
+    if (arr.ndim() == 2 && static_cast<size_t>(arr.shape(0)) != num_pins) {  // before copying a huge array
+      std::ostringstream msg;
+      msg << "positions must have one row per pinned vertex (" << num_pins << "), got " << arr.shape(0);
+      throw py::value_error(msg.str());
+    }
+    std::vector<double> targets = read_matrix<double>(arr, 3, "positions", false);
+    std::lock_guard<std::mutex> lock(mutex_);
+    solver_->set_pin_positions(targets.data(), static_cast<int>(targets.size() / 3));
+  }
+  py::array_t<int64_t> pinned() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const std::vector<int64_t>& pins = solver_->pinned();
+    py::array_t<int64_t> out(static_cast<py::ssize_t>(pins.size()));
+    std::copy(pins.begin(), pins.end(), out.mutable_data());
+    return out;
+  }
+  py::array_t<double> pin_positions() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return to_array(solver_->pin_positions());
   }
   void step(int n) {
     if (n < 0) throw py::value_error("the number of steps must be >= 0");
@@ -359,9 +383,15 @@ By default one style, DEFAULTS['preset'] with the default sigma and mu, applies 
            "(#F,) ints: style index per face, -1 = unstyled (pure ARAP). No re-factorization.")
       .def("set_pins", &Solver::set_pins, py::arg("pinned"), py::arg("positions") = py::none(),
            "Sets the pinned vertices and their targets (re-factors).")
+      .def("set_pin_positions", &Solver::set_pin_positions, py::arg("positions"),
+           "(#P, 3) new targets for the current pins, in the order of `pinned`. No re-factorization; the pins\n"
+           "sit at their targets at once, the rest of the mesh follows at the next step.")
+      .def_property_readonly("pinned", &Solver::pinned, "(#P,) int64 copy of the pinned vertex indices.")
+      .def_property_readonly("pin_positions", &Solver::pin_positions, "(#P, 3) float64 copy of the pins' targets.")
       .def_property("lam", [](Solver& s) { return s.core().lambda(); },
                     [](Solver& s, double l) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_lambda(l); },
-                    "lambda (>= 0): how strongly edges follow the preferred normals.")
+                    "lambda: how strongly edges follow the preferred normals (range: LIMITS['lam']).\n"
+                    "Setting it does not re-factor.")
       .def_property("admm_iterations", [](Solver& s) { return s.core().admm_iterations(); },
                     [](Solver& s, int n) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_admm_iterations(n); },
                     "ADMM rounds per step (range: LIMITS['admm_iterations']).")
