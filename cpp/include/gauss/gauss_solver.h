@@ -15,7 +15,6 @@
 // the caller's frame.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <Eigen/SparseCore>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -71,7 +70,7 @@ class GaussSolver {
 
   // One iteration of Algorithm 1.
   void step();
-  // Current vertices := rest vertices; step count := 0.
+  // Current vertices := rest vertices (pins at their targets); step count := 0.
   void reset();
 
   // --- Read-outs. ---
