@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -11,76 +12,25 @@
 #include <string>
 #include <vector>
 
-
 #include "gauss/gauss_solver.h"
 #include "gauss/parallel.h"
 #include "gauss/presets.h"
 #include "gauss/settings.h"
+#include "numpy_arrays.h"
 
 namespace py = pybind11;
 namespace settings = gauss::settings;
 using gauss::GaussSolver;
 using gauss::PreferenceFunction;
 using gauss::StyleParams;
+using gauss_python::as_array;
+using gauss_python::eval_points;
+using gauss_python::read_matrix;
+using gauss_python::read_rotation;
+using gauss_python::read_vector3;
+using gauss_python::to_array;
 
 namespace {
-
-// Reads an (n, cols) array of any real dtype and any strides into a flat row-major vector.
-template <typename Out>
-std::vector<Out> read_matrix(const py::handle& obj, py::ssize_t cols, const char* name, bool integer) {
-  py::array arr = py::array::ensure(obj);
-  if (!arr) throw py::type_error(std::string(name) + " must be array-like");
-  const char kind = arr.dtype().kind();
-  const bool ok_kind = integer ? (kind == 'i' || kind == 'u') : (kind == 'f' || kind == 'i' || kind == 'u');
-  if (!ok_kind) {
-    std::ostringstream msg;
-    msg << name << " must have a" << (integer ? "n integer" : " floating-point") << " dtype, got " << py::str(arr.dtype()).cast<std::string>();
-    throw py::type_error(msg.str());
-  }
-  if (arr.ndim() == 1 && cols == 1) {
-  } else if (arr.ndim() != 2 || arr.shape(1) != cols) {
-    std::ostringstream msg;
-    msg << name << " must have shape (n, " << cols << "), got (";
-    for (py::ssize_t i = 0; i < arr.ndim(); ++i) msg << (i ? ", " : "") << arr.shape(i);
-    msg << (arr.ndim() == 1 ? ",)" : ")");
-    throw py::value_error(msg.str());
-  }
-  // Convert through numpy only when the dtype differs; float32/int32 from Blender take this path
-  // inside native code, the caller never copies.
-  py::array_t<Out, py::array::forcecast> typed(arr);
-  std::vector<Out> out(static_cast<size_t>(typed.size()));
-  if (cols == 1 && typed.ndim() == 1) {
-    auto r = typed.template unchecked<1>();
-    for (py::ssize_t i = 0; i < r.shape(0); ++i) out[i] = r(i);
-  } else {
-    auto r = typed.template unchecked<2>();
-    for (py::ssize_t i = 0; i < r.shape(0); ++i)
-      for (py::ssize_t j = 0; j < cols; ++j) out[i * cols + j] = r(i, j);
-  }
-  return out;
-}
-
-Eigen::Matrix3d read_rotation(const py::object& obj) {
-  if (obj.is_none()) return Eigen::Matrix3d::Identity();
-  std::vector<double> m = read_matrix<double>(obj, 3, "rotation", false);
-  if (m.size() != 9) throw py::value_error("rotation must be a 3x3 matrix");
-  Eigen::Matrix3d R;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) R(i, j) = m[3 * i + j];
-  return R;
-}
-
-// py::array::ensure returns a null handle (numpy's error cleared) for ragged lists and the like.
-py::array as_array(const py::handle& obj, const char* name) {
-  py::array arr = py::array::ensure(obj);
-  if (!arr) throw py::type_error(std::string(name) + " must be array-like");
-  return arr;
-}
-
-Eigen::Vector3d read_vector3(const py::object& obj, const char* name) {
-  std::vector<double> v = read_matrix<double>(as_array(obj, name).reshape({1, -1}), 3, name, false);
-  return Eigen::Vector3d(v[0], v[1], v[2]);
-}
 
 // A style as Python sees it: its parameters (for read-back) plus the evaluated function.
 struct Style {
@@ -93,24 +43,6 @@ Style make_style(std::string name, StyleParams params) {
   Style s{std::move(name), params, nullptr};
   s.g = std::make_shared<PreferenceFunction>(params);
   return s;
-}
-
-py::array_t<double> to_array(const std::vector<Eigen::Vector3d>& v) {
-  py::array_t<double> out({static_cast<py::ssize_t>(v.size()), py::ssize_t(3)});
-  auto w = out.mutable_unchecked<2>();
-  for (size_t i = 0; i < v.size(); ++i)
-    for (int k = 0; k < 3; ++k) w(i, k) = v[i][k];
-  return out;
-}
-
-// Evaluates f at one point (shape (3,)) or many (shape (n, 3)).
-template <typename F>
-py::object eval_points(const py::object& x, F&& f) {
-  py::array arr = py::array::ensure(x);
-  if (!arr) throw py::type_error("x must be array-like");
-  const bool single = arr.ndim() == 1;
-  std::vector<double> pts = read_matrix<double>(single ? arr.reshape({1, -1}) : arr, 3, "x", false);
-  return f(pts, single);
 }
 
 class Solver {
@@ -126,7 +58,7 @@ class Solver {
                                             static_cast<int>(f.size() / 3), pins,
                                             targets.empty() ? nullptr : targets.data(), lam);
     solver_->set_admm_iterations(admm_iterations);
-    styles_.push_back(make_style(settings::default_preset, gauss::preset_style(settings::default_preset)));
+    styles_.push_back(make_style(settings::default_preset, gauss::default_style()));
   }
 
   void set_styles(const std::vector<Style>& styles) {
@@ -152,6 +84,29 @@ class Solver {
     read_pins(pinned, positions, pins, targets);
     std::lock_guard<std::mutex> lock(mutex_);
     solver_->set_pins(pins, targets.empty() ? nullptr : targets.data());
+  }
+  void set_pin_positions(const py::object& positions) {
+    const size_t num_pins = solver_->pinned().size();
+    py::array arr = as_array(positions, "positions");
+    if (arr.ndim() == 2 && static_cast<size_t>(arr.shape(0)) != num_pins) {  // before copying a huge array
+      std::ostringstream msg;
+      msg << "positions must have one row per pinned vertex (" << num_pins << "), got " << arr.shape(0);
+      throw py::value_error(msg.str());
+    }
+    std::vector<double> targets = read_matrix<double>(arr, 3, "positions", false);
+    std::lock_guard<std::mutex> lock(mutex_);
+    solver_->set_pin_positions(targets.data(), static_cast<int>(targets.size() / 3));
+  }
+  py::array_t<int64_t> pinned() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const std::vector<int64_t>& pins = solver_->pinned();
+    py::array_t<int64_t> out(static_cast<py::ssize_t>(pins.size()));
+    std::copy(pins.begin(), pins.end(), out.mutable_data());
+    return out;
+  }
+  py::array_t<double> pin_positions() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return to_array(solver_->pin_positions());
   }
   void step(int n) {
     if (n < 0) throw py::value_error("the number of steps must be >= 0");
@@ -359,9 +314,15 @@ By default one style, DEFAULTS['preset'] with the default sigma and mu, applies 
            "(#F,) ints: style index per face, -1 = unstyled (pure ARAP). No re-factorization.")
       .def("set_pins", &Solver::set_pins, py::arg("pinned"), py::arg("positions") = py::none(),
            "Sets the pinned vertices and their targets (re-factors).")
+      .def("set_pin_positions", &Solver::set_pin_positions, py::arg("positions"),
+           "(#P, 3) new targets for the current pins, in the order of `pinned`. No re-factorization; the pins\n"
+           "sit at their targets at once, the rest of the mesh follows at the next step.")
+      .def_property_readonly("pinned", &Solver::pinned, "(#P,) int64 copy of the pinned vertex indices.")
+      .def_property_readonly("pin_positions", &Solver::pin_positions, "(#P, 3) float64 copy of the pins' targets.")
       .def_property("lam", [](Solver& s) { return s.core().lambda(); },
                     [](Solver& s, double l) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_lambda(l); },
-                    "lambda (>= 0): how strongly edges follow the preferred normals.")
+                    "lambda: how strongly edges follow the preferred normals (range: LIMITS['lam']).\n"
+                    "Setting it does not re-factor.")
       .def_property("admm_iterations", [](Solver& s) { return s.core().admm_iterations(); },
                     [](Solver& s, int n) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_admm_iterations(n); },
                     "ADMM rounds per step (range: LIMITS['admm_iterations']).")

@@ -2,7 +2,7 @@
 // The fuzz target's body: one input = one session with GaussSolver through its public entry points
 // (mesh arrays with arbitrary indices and coordinates, pins and their targets, styles from presets or
 // from arbitrary normals/rings/sigma/mu/rotation, face styles, lambda, ADMM iterations, steps, reset,
-// read-outs). Shared by the libFuzzer target (fuzz_solver.cpp) and by the replay of the corpus and of
+// read-outs, moving the pins). Shared by the libFuzzer target (fuzz_solver.cpp) and by the replay of the corpus and of
 // the regressions in tests/cpp/test_robustness.cpp, so every input the fuzzer ever crashed on stays
 // covered by ctest under any compiler.
 //
@@ -13,7 +13,7 @@
 //    pinned vertices exactly at their targets.
 //
 // Input layout (bytes consumed front to back; missing bytes read as 0): mesh, pins, lambda, then up
-// to 16 operations. tests/fuzz/make_corpus.py writes seeds in this layout.
+// to 16 operations, then new pin targets. tests/fuzz/make_corpus.py writes seeds in this layout.
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -305,6 +305,26 @@ inline std::optional<gauss::PreferenceFunction> make_style(Reader& r) {
   }
 }
 
+// Moves the current pins (set_pin_positions, no re-factorization): near their targets or anywhere, or
+// with a wrong count. It runs after the operations, so inputs saved before it still replay the sessions
+// they were saved for.
+inline void drag_pins(Reader& r, gauss::GaussSolver& s, const Mesh& m, Pins& pins) {
+  Pins moved = pins;
+  if (moved.target.empty())
+    for (int64_t v : moved.index) moved.target.insert(moved.target.end(), &m.V[3 * v], &m.V[3 * v] + 3);
+  const uint8_t mode = r.byte();
+  for (double& x : moved.target) x = mode % 2 ? r.real() : x + r.real() / 8.0;
+  const int count = static_cast<int>(moved.index.size()) - (mode >= 224 ? 1 : 0);
+  GAUSS_FUZZ_TRACE("  set_pin_positions (%d of %zu)\n", count, moved.index.size());
+  try {
+    s.set_pin_positions(moved.target.empty() ? nullptr : moved.target.data(), count);
+    if (count != static_cast<int>(moved.index.size())) fail("a wrong number of pin positions was accepted");
+    pins = std::move(moved);
+  } catch (const std::invalid_argument& e) {
+    GAUSS_FUZZ_TRACE("    refused: %s\n", e.what());
+  }
+}
+
 // The read-outs, checked against the contract above.
 inline void check(const gauss::GaussSolver& s, const Mesh& m, const std::vector<uint8_t>& referenced,
                   const Pins& pins) {
@@ -428,6 +448,9 @@ inline void run_one(const uint8_t* data, size_t size) {
       GAUSS_FUZZ_TRACE("    refused: %s\n", e.what());
     }
   }
+  step();
+  check(*s, m, referenced, pins);
+  drag_pins(r, *s, m, pins);
   step();
   check(*s, m, referenced, pins);
   GAUSS_FUZZ_TRACE("  done: %d steps since reset, %d styles, E_g %g\n", s->step_count(), s->num_styles(), s->g_energy());
