@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+
+#include "gauss/direction_merge.h"
 #include "gauss/gauss_solver.h"
 #include "gauss/parallel.h"
 #include "gauss/presets.h"
@@ -187,6 +189,52 @@ PYBIND11_MODULE(gauss_core, m) {
   defaults["preset"] = settings::default_preset;
   m.attr("DEFAULTS") = defaults;
   m.attr("LIMITS") = limits;
+  py::dict sizes;
+  sizes["normals"] = settings::max_style_normals;
+  sizes["rings"] = settings::max_style_rings;
+  m.attr("SIZE_LIMITS") = sizes;
+
+  m.def("merge_directions", [](const py::object& normals, double max_angle_degrees, const py::object& weights) {
+        std::vector<double> n = read_matrix<double>(normals, 3, "normals", false);
+        std::vector<Eigen::Vector3d> dirs(n.size() / 3);
+        for (size_t i = 0; i < dirs.size(); ++i) {
+          const Eigen::Vector3d d(n[3 * i], n[3 * i + 1], n[3 * i + 2]);
+          const double len = d.norm();
+          if (!d.allFinite() || !(len > 1e-300) || !std::isfinite(len)) {
+            std::ostringstream msg;
+            msg << "normal " << i << " is zero, NaN or infinite; every direction must be a finite, non-zero 3-vector";
+            throw py::value_error(msg.str());
+          }
+          dirs[i] = d / len;
+        }
+        std::vector<double> w;
+        if (!weights.is_none()) {
+          w = read_matrix<double>(weights, 1, "weights", false);
+          if (w.size() != dirs.size()) {
+            std::ostringstream msg;
+            msg << "weights must have one entry per normal (" << dirs.size() << "), got " << w.size();
+            throw py::value_error(msg.str());
+          }
+        }
+        if (!(max_angle_degrees >= 0.0 && max_angle_degrees <= 90.0))
+          throw py::value_error("max_angle_degrees must lie between 0 and 90 (got " + std::to_string(max_angle_degrees) + ")");
+        gauss::MergedDirections md;
+        {
+          py::gil_scoped_release release;
+          md = gauss::merge_directions(dirs, w, max_angle_degrees * (M_PI / 180.0));
+        }
+        py::array_t<double> counts(static_cast<py::ssize_t>(md.weights.size()));
+        for (size_t i = 0; i < md.weights.size(); ++i) counts.mutable_at(i) = md.weights[i];
+        return py::make_tuple(to_array(md.directions), counts);
+      }, py::arg("normals"), py::arg("max_angle_degrees"), py::arg("weights") = py::none(), R"doc(
+Merges near-parallel directions: (directions (M, 3), weights (M,)).
+
+normals: (K, 3) non-zero vectors (normalized here); weights: (K,) values >= 0 (e.g. face areas),
+default 1 each, so the second result counts the directions merged into each one.
+Directions are taken as seeds in order of decreasing weight (ties: by direction); each seed takes
+every remaining direction within max_angle_degrees (0..90) of it and becomes their weighted mean.
+So every input lies within max_angle_degrees of its seed, any two seeds are farther apart than that,
+and the result does not depend on the order of the inputs. O(K log K).)doc");
 
   m.def("set_num_threads", [](int n) {
         if (n < 1) throw py::value_error("the number of threads must be >= 1");
@@ -209,6 +257,10 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
                        const py::object& axis, const py::object& ring_offsets, double axis_contribution) {
              StyleParams p;
              if (!normals.is_none() && as_array(normals, "normals").size() > 0) {
+               // Refused before the copy: a huge array must not cost memory first.
+               if (as_array(normals, "normals").size() > 3 * static_cast<py::ssize_t>(settings::max_style_normals))
+                 throw py::value_error("a style takes at most " + std::to_string(settings::max_style_normals) +
+                                       " preferred normals; merge near-parallel ones first (merge_directions)");
                std::vector<double> n = read_matrix<double>(normals, 3, "normals", false);
                for (size_t i = 0; i + 2 < n.size(); i += 3) p.normals.emplace_back(n[i], n[i + 1], n[i + 2]);
              }

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "gauss/closest_rotation.h"
+#include "gauss/cotangent_weights.h"
 #include "gauss/normal_step.h"
 #include "gauss/parallel.h"
 #include "gauss/presets.h"
@@ -20,13 +21,6 @@ namespace {
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using Clock = std::chrono::steady_clock;
-
-// A face whose doubled area is below this fraction of its summed squared edge lengths has no
-// reliable cotangents (|cot| would exceed ~1e8) or normal.
-constexpr double kDegenerateRatio = 1e-8;
-// Cotangent weight given to each edge of a face that is degenerate in the rest pose: small and
-// positive, so the face still ties its vertices to the mesh and the Laplacian stays definite.
-constexpr double kDegenerateWeight = 1e-3;
 
 double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
@@ -117,13 +111,9 @@ void GaussSolver::compute_rest_quantities() {
     const auto& t = topo_.faces[f];
     Vector3d e[3];
     for (int k = 0; k < 3; ++k) e[k] = rest_[t[(k + 1) % 3]] - rest_[t[k]];
-    const double twice_area = e[0].cross(e[1]).norm();
-    const double size = e[0].squaredNorm() + e[1].squaredNorm() + e[2].squaredNorm();
-    const bool degenerate = !(twice_area > kDegenerateRatio * size);
+    const TriangleWeights tw = cotangent_weights(e);
     for (int k = 0; k < 3; ++k) {
-      // Slot k's opposite corner is t[(k+2)%3]; its angle lies between -e[(k+2)%3] and e[(k+1)%3].
-      const double cot = -e[(k + 2) % 3].dot(e[(k + 1) % 3]) / twice_area;
-      const double w = degenerate ? kDegenerateWeight : 0.5 * cot;
+      const double w = tw.w[k];
       slot_weight_[f][k] = w;
       slot_rest_[f][k] = w * e[k];
       edge_weight_[topo_.face_edge[f][k]] += w;
