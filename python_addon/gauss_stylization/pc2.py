@@ -34,8 +34,8 @@ class Writer:
 
     points, samples: the counts, fixed up front (the disk space is checked for all of them);
     start: the frame of the first sample; rate: frames between samples.
-    Raises ValueError for nonsense counts and OSError when the folder is not writable or the
-    disk has no room for the whole file.
+    Raises ValueError for nonsense counts and OSError when the folder cannot be made or written,
+    or the disk has no room for the whole file.
     """
 
     def __init__(self, path, points, samples, start=0.0, rate=1.0):
@@ -48,8 +48,10 @@ class Writer:
         self.path = os.path.abspath(path)
         self.points, self.samples, self.written = points, samples, 0
         folder = os.path.dirname(self.path)
-        if not os.path.isdir(folder):
-            raise OSError("the folder %s does not exist" % folder)
+        try:
+            os.makedirs(folder, exist_ok=True)  # as Blender's own caches and render output do
+        except OSError as exc:
+            raise OSError("cannot make the folder %s: %s" % (folder, exc.strerror or exc)) from exc
         needed = file_size(points, samples)
         free = shutil.disk_usage(folder).free
         if needed + DISK_MARGIN > free:

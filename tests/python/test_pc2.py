@@ -89,9 +89,13 @@ def test_a_cache_larger_than_the_free_disk_is_refused_before_writing(tmp_path):
     assert os.listdir(tmp_path) == []
 
 
-def test_a_missing_folder_is_refused(tmp_path):
-    with pytest.raises(OSError, match="does not exist"):
-        pc2.Writer(str(tmp_path / "no" / "a.pc2"), 5, 1)
+def test_a_missing_folder_is_made_and_an_impossible_one_refused(tmp_path):
+    writer = pc2.Writer(str(tmp_path / "cache" / "shot" / "a.pc2"), 5, 1)
+    writer.discard()
+    assert os.listdir(tmp_path / "cache" / "shot") == []
+    (tmp_path / "file").write_text("")
+    with pytest.raises(OSError, match="cannot make the folder"):
+        pc2.Writer(str(tmp_path / "file" / "a.pc2"), 5, 1)
 
 
 @pytest.mark.parametrize("mangle, message", [
