@@ -4,19 +4,14 @@ import bpy
 
 from . import cache_modifier, schema
 from .fields import Panel
-# The sidebar's own panel mix-in and row drawing, so this panel looks and behaves like the others.
-from .ui import _GaussPanel as GaussPanel, _draw_rows as draw_rows, _mesh_object as mesh_object, \
+# The sidebar's own sub-panel mix-in and row drawing, so this panel looks and behaves like the others.
+from .ui import _GaussSubPanel as GaussSubPanel, _draw_rows as draw_rows, _mesh_object as mesh_object, \
     _split_column as split_column
 
 
-class VIEW3D_PT_gauss_bake(GaussPanel, bpy.types.Panel):
+class VIEW3D_PT_gauss_bake(GaussSubPanel, bpy.types.Panel):
     bl_label = "Bake"
-    bl_parent_id = "VIEW3D_PT_gauss_stylization"
     bl_options = {'DEFAULT_CLOSED'}
-
-    @classmethod
-    def poll(cls, context):
-        return mesh_object(context) is not None
 
     def draw(self, context):
         obj = mesh_object(context)

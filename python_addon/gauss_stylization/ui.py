@@ -38,6 +38,15 @@ class _GaussPanel:
     bl_category = CATEGORY
 
 
+class _GaussSubPanel(_GaussPanel):
+    """A sub-panel of the Gauss Stylization panel, shown when a mesh object is active."""
+    bl_parent_id = "VIEW3D_PT_gauss_stylization"
+
+    @classmethod
+    def poll(cls, context):
+        return _mesh_object(context) is not None
+
+
 class VIEW3D_PT_gauss_stylization(_GaussPanel, bpy.types.Panel):
     bl_label = "Gauss Stylization"
 
@@ -67,13 +76,8 @@ class VIEW3D_PT_gauss_stylization(_GaussPanel, bpy.types.Panel):
         _draw_rows(_split_column(layout), obj, obj.gauss_stylization, schema.OBJECT, Panel.MAIN)
 
 
-class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
+class VIEW3D_PT_gauss_styles(_GaussSubPanel, bpy.types.Panel):
     bl_label = "Styles"
-    bl_parent_id = "VIEW3D_PT_gauss_stylization"
-
-    @classmethod
-    def poll(cls, context):
-        return _mesh_object(context) is not None
 
     def draw(self, context):
         obj = _mesh_object(context)
@@ -131,14 +135,9 @@ def _draw_custom_normals(layout, _obj, slot, field):
         layout.label(text="Add at least one normal", icon='ERROR')
 
 
-class VIEW3D_PT_gauss_solver(_GaussPanel, bpy.types.Panel):
+class VIEW3D_PT_gauss_solver(_GaussSubPanel, bpy.types.Panel):
     bl_label = "Solver"
-    bl_parent_id = "VIEW3D_PT_gauss_stylization"
     bl_options = {'DEFAULT_CLOSED'}
-
-    @classmethod
-    def poll(cls, context):
-        return _mesh_object(context) is not None
 
     def draw(self, context):
         obj = _mesh_object(context)

@@ -197,3 +197,33 @@ def test_headless_bake_prints_progress_and_keeps_a_relative_path(addon, tmp_path
     bpy.ops.wm.open_mainfile(filepath=str(blend))
     modifier = bpy.data.objects["Capsule"].modifiers[-1]
     assert modifier.type == 'MESH_CACHE' and modifier.filepath == "//Capsule_gauss.pc2"
+
+
+class _Recorder:
+    """A stand-in for a panel's layout that records what is drawn."""
+
+    def __init__(self, rows):
+        self.rows = rows
+
+    def prop(self, _owner, name, **_options):
+        self.rows.append(name)
+
+    def operator(self, idname, **_options):
+        self.rows.append(idname)
+
+    def label(self, text="", **_options):
+        self.rows.append("label: " + text)
+
+    def column(self, **_options):
+        return self
+
+
+def test_the_bake_panel_offers_bake_steps_and_both_bakes(addon, tmp_path):
+    obj = rig.bent_capsule()
+    rows = []
+    addon.bake_ui.VIEW3D_PT_gauss_bake.draw(type("Panel", (), {"layout": _Recorder(rows)})(), bpy.context)
+    assert rows == ["bake_steps", "object.gauss_bake_animation", "object.gauss_bake_progress"]
+    assert _bake_animation(tmp_path / "c.pc2") == {'FINISHED'}
+    rows.clear()
+    addon.bake_ui.VIEW3D_PT_gauss_bake.draw(type("Panel", (), {"layout": _Recorder(rows)})(), bpy.context)
+    assert rows[-1] == "label: Plays %s" % (tmp_path / "c.pc2") and obj.modifiers[-1].type == 'MESH_CACHE'
