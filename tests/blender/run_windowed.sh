@@ -9,7 +9,7 @@ BUILD=$(cd "${1:-$HERE/../../build}" && pwd) || { echo "windowed: no build dir";
 RESULT="$BUILD/screenshots/windowed_result.txt"
 mkdir -p "$BUILD/screenshots"
 rm -f "$RESULT"
-timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" \
+timeout 420 xvfb-run -a -s "-screen 0 1280x800x24" \
     blender --factory-startup --enable-event-simulate --python-exit-code 1 \
     -P "$HERE/windowed_driver.py" -- "$BUILD"
 STATUS=$?

@@ -14,6 +14,7 @@ import numpy as np
 
 import rig
 from helpers import coords, evaluated_coords
+from scene_kit import suzanne
 
 
 def _addon():
@@ -21,12 +22,10 @@ def _addon():
     return gauss_stylization
 
 
-def _subdivided_copy(d, name):
-    source = bpy.data.objects[name]
-    obj = source.copy()
-    obj.data = source.data.copy()
-    obj.name = "Subdivided"
-    bpy.context.scene.collection.objects.link(obj)
+def _subdivided_suzanne(d):
+    """A Suzanne (507 vertices) with a Subdivision modifier: small, so the run starts fast on a busy machine."""
+    with d.override():
+        obj = suzanne("Subdivided", subdivisions=0)
     obj.modifiers.new("Subdivision", 'SUBSURF').levels = 1
     obj.gauss_stylization.use_modifiers = True
     obj.gauss_stylization.output = 'NEW_OBJECT'
@@ -35,10 +34,10 @@ def _subdivided_copy(d, name):
     return obj.name
 
 
-def new_object_live_run(d, name):
+def new_object_live_run(d):
     """Use Modifiers + New Object: the run writes into '<name>_stylized' live; Esc removes it,
     Enter keeps it, one Ctrl+Z takes it away again. The original never changes."""
-    subdivided = _subdivided_copy(d, name)
+    subdivided = _subdivided_suzanne(d)
     result_name = subdivided + _addon().schema.NEW_OBJECT_SUFFIX
     original, shown = coords(bpy.data.objects[subdivided]), evaluated_coords(bpy.data.objects[subdivided])
     counts = (len(bpy.data.objects), len(bpy.data.meshes))
@@ -153,6 +152,6 @@ def screenshot_window(d, filename):
     d.check("screenshot %s saved" % filename, os.path.isfile(path), path)
 
 
-def run(d, name):
-    yield from new_object_live_run(d, name)
+def run(d):
+    yield from new_object_live_run(d)
     yield from bakes(d)
