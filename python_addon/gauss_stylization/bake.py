@@ -110,7 +110,10 @@ class _Bake:
     def _restore(self):
         self.suspended.restore()
         frame, subframe = self.frame
-        self.scene.frame_set(frame, subframe=subframe)
+        try:
+            self.scene.frame_set(frame, subframe=subframe)
+        except ReferenceError:  # cancelled because another file is being loaded
+            pass
 
 
 class AnimationBake(_Bake):

@@ -107,6 +107,14 @@ class _BakeOperator:
     def modal(self, context, event):
         if self._timer is None:  # ended outside an event (undo, add-on disabled)
             return {'CANCELLED', 'PASS_THROUGH'}
+        try:
+            return self._handle_event(context, event)
+        except Exception as exc:  # never leave a half-written file, a timer or a stale run behind
+            self.stop(context)
+            self.report({'ERROR'}, "Bake of '%s' cancelled: %s" % (self._obj_name, exc))
+            return {'CANCELLED'}
+
+    def _handle_event(self, context, event):
         if event.type == 'ESC' and event.value == 'PRESS':
             self.stop(context, keep=False)
             self.report({'WARNING'}, "Bake of '%s' cancelled; nothing was written" % self._obj_name)

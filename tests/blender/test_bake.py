@@ -227,3 +227,15 @@ def test_the_bake_panel_offers_bake_steps_and_both_bakes(addon, tmp_path):
     rows.clear()
     addon.bake_ui.VIEW3D_PT_gauss_bake.draw(type("Panel", (), {"layout": _Recorder(rows)})(), bpy.context)
     assert rows[-1] == "label: Plays %s" % (tmp_path / "c.pc2") and obj.modifiers[-1].type == 'MESH_CACHE'
+
+
+def test_the_object_deleted_mid_bake_ends_it_leaving_nothing(addon, tmp_path):
+    obj = rig.bent_capsule()
+    helpers.settings_io.add_slot(obj.gauss_stylization, {"preset": 'CUBE'})
+    job = addon.bake.AnimationBake(bpy.context, obj, 1, 10, str(tmp_path / "c.pc2"), warm_start=False)
+    job.advance()
+    bpy.data.objects.remove(obj)
+    with pytest.raises(ReferenceError):
+        job.advance()
+    job.cancel()
+    assert _folder_listing(tmp_path) == [] and bpy.context.scene.frame_current == 1
