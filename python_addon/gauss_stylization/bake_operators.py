@@ -16,7 +16,7 @@ from bpy.props import BoolProperty, IntProperty, StringProperty
 from . import bake, runs, schema
 from .errors import NativeModuleError, SettingsError
 from .operators import start_with_style, stylize_problem
-from .progress import Progress
+from .bake_progress import Progress
 from .validation import poll_result
 
 TICK_SECONDS = 0.01

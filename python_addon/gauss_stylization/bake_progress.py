@@ -1,7 +1,8 @@
-"""Progress of long work: Blender's progress indicator and a status-bar text in a window,
-a printed line at least every 10% in background mode.
+"""Progress of a bake: Blender's progress indicator and a status-bar text in a window, a printed
+line at least every 10% in background mode.
 
-One small class so that the runs' shared progress helpers can replace it in one place.
+One small class, so that the add-on's shared progress helper (being built with the multi-object
+live run) can replace it in one place.
 """
 
 import sys
