@@ -109,6 +109,7 @@ def suzanne(name="Suzanne", subdivisions=2):
 # (after the importer's Y-up -> Z-up conversion) and turn them three-quarters to the camera.
 SPOT = ("small/spot_triangulated_2930.obj", (('X', 90), ('Z', 120)))  # public domain (Keenan Crane)
 BUNNY = ("bunny/bunny_odedstein_3301.obj", (('X', 90), ('Z', 20)))   # Stanford 3D Scanning Repository
+BUNNY_WATERTIGHT = ("bunny/bunny_watertight_34834.obj", (('X', 90), ('Z', 20)))  # bun_zipper, holes filled
 SPOT_HEAD = np.array([-math.sin(math.radians(120)), math.cos(math.radians(120)), 0.0])  # where Spot looks
 
 
@@ -130,6 +131,14 @@ def demo_mesh(which, name, size=2.0, fallback_subdivisions=1):
 def coords(obj):
     """(#V,3) float32 vertex coordinates, object space."""
     return addon.mesh_io.read_vertex_coords(obj.data)
+
+
+def enclosed_volume(obj):
+    """The volume a closed mesh encloses (object space): the sum over its loop triangles of
+    a . (b x c) / 6, in float64."""
+    co = coords(obj).astype(np.float64)
+    a, b, c = (co[corner] for corner in addon.mesh_io.read_loop_triangles(obj.data)[0].T)
+    return float(np.einsum("ij,ij->", a, np.cross(b, c)) / 6.0)
 
 
 def normalize(obj, size=2.0):
