@@ -75,7 +75,8 @@ def tag_changed(mesh):
 
 
 def _read_loop_triangles(mesh):
-    # Blender < 4.1 needs an explicit call; newer versions compute them on demand.
+    # Until 4.1, loop_triangles stays empty without this call; later versions compute them on demand
+    # and keep the call (it then costs nothing). hasattr: in case a future version drops it.
     if hasattr(mesh, "calc_loop_triangles"):
         mesh.calc_loop_triangles()
     count = len(mesh.loop_triangles)
