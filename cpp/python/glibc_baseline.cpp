@@ -4,7 +4,7 @@
 //
 // A shared object records, for every glibc function it calls, the symbol version that was the default
 // when it was linked; an older glibc lacks the newer versions and refuses to load it. The module's own
-// code and the C++ runtime linked into it (libstdc++.a, libgcc_eh.a) reference eight such symbols, so
+// code and the C++ runtime linked into it (libstdc++.a, libgcc_eh.a) reference seven such symbols, so
 // this file defines them: every reference in the module binds to these definitions, and the version
 // script makes them local, so nothing outside the module sees them.
 //
