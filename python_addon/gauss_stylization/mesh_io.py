@@ -75,8 +75,7 @@ def tag_changed(mesh):
 
 
 def _read_loop_triangles(mesh):
-    # Until 4.1, loop_triangles stays empty without this call; later versions compute them on demand
-    # and keep the call (it then costs nothing). hasattr: in case a future version drops it.
+    # Blender < 4.1 needs an explicit call; newer versions compute them on demand.
     if hasattr(mesh, "calc_loop_triangles"):
         mesh.calc_loop_triangles()
     count = len(mesh.loop_triangles)
