@@ -6,23 +6,25 @@
 BUILD_DIR is a build tree of scripts/build.sh (it holds the compiled solver module,
 BUILD_DIR/addon/gauss_stylization/gauss_core*.so). Writes to OUT_DIR:
 
-  gauss_stylization-VERSION-addon-TAG.zip      classic add-on: Preferences > Add-ons > Install...;
+  gauss_stylization-VERSION-addon-TAG.zip      legacy add-on: Preferences > Add-ons > Install...;
       one top-level folder gauss_stylization/
   gauss_stylization-VERSION-extension-TAG.zip  extension (Blender 4.2+): Preferences > Get
-      Extensions > Install from Disk...; blender_manifest.toml at the root. Only for a Python
-      that some Blender 4.2+ runs (not for 3.10).
+      Extensions > Install from Disk...; blender_manifest.toml at the root; only for a Python
+      that some Blender 4.2+ runs (not for 3.10)
 
-TAG names the Python the module was built for (e.g. cp311-linux_x86_64): the zip only works in a
-Blender that runs that Python version. Which Blender releases those are comes from one table,
-BLENDER_FOR_PYTHON below: the manifest's blender_version_min/max and the README.txt in each zip
-(which Blender loads it, which glibc it needs, which zip the other Blenders need) derive from it.
-The add-on's Python files come from python_addon/gauss_stylization/ (never stale), the .so from
-the build. The zips are reproducible (sorted entries, fixed timestamps).
+TAG names the Python the module was built for (e.g. cp311-linux_x86_64): the zip only
+works in a Blender that runs that Python version. The add-on's Python files come from
+python_addon/gauss_stylization/ (never stale), the .so from the build. The zips are
+reproducible (sorted entries, fixed timestamps).
 
---verify-install installs the classic zip into a throw-away Blender user configuration
+--verify-install installs the legacy zip into a throw-away Blender user configuration
 (BLENDER_USER_CONFIG / BLENDER_USER_SCRIPTS in a temporary folder, so the machine's own
 configuration is not touched), enables it and stylizes a sphere with it, using `blender`
 from PATH (or $BLENDER).
+
+Which Blender releases run which Python is written once, in BLENDER_FOR_PYTHON below: the
+manifest's blender_version_min/max and the README.txt in each zip (which Blender loads it,
+the glibc it needs, which zip the other Blenders need) derive from it.
 """
 
 import argparse

@@ -8,6 +8,7 @@ add-on's own import fail and look at what Stylize and the panel show.
 
 import importlib
 import importlib.machinery
+import pathlib
 import platform
 import shutil
 import sys
@@ -32,15 +33,18 @@ def _detected_versions():
 @pytest.fixture
 def native_beside(addon, tmp_path):
     """native_beside({file name: bytes}) -> the add-on's native module, imported from a package of its
-    own whose folder holds just those files (the add-on's own gauss_core stays loaded and untouched)."""
+    own that holds the add-on's Python modules (an empty __init__, so nothing registers or loads
+    eagerly) and, as its only gauss_core files, the given ones. The add-on's own gauss_core stays
+    loaded and untouched."""
     loaded = []
 
     def load(files):
         name = "gauss_unloadable_%d" % len(loaded)
         package = tmp_path / name
         package.mkdir()
+        for source in pathlib.Path(addon.native.__file__).parent.glob("*.py"):
+            shutil.copy(source, package / source.name)
         (package / "__init__.py").write_text("")
-        shutil.copy(addon.native.__file__, package / "native.py")
         for file_name, data in files.items():
             (package / file_name).write_bytes(data)
         loaded.append(name)
@@ -124,8 +128,7 @@ class _LayoutRecorder:
 
 
 def test_panel_shows_it(unloadable):
-    helpers.suzanne(levels=0)
-    layout = _LayoutRecorder()
+    layout = _LayoutRecorder()  # no object selected: the panel draws the message and a hint only
     panel = unloadable.ui.VIEW3D_PT_gauss_stylization
     panel.draw(types.SimpleNamespace(layout=layout), bpy.context)
     shown = " ".join(layout.texts)
