@@ -141,11 +141,17 @@ class Int(_Number):
 
 
 class Bool(Field):
-    """A checkbox."""
+    """A checkbox. Where the solver owns the setting (its name is in native.facts().defaults), the
+    default comes from the solver and must not be given here; otherwise it must be."""
 
-    def __init__(self, name, label, tooltip, default=False, **options):
+    def __init__(self, name, label, tooltip, default=None, **options):
         super().__init__(name, label, tooltip, **options)
-        self.default = bool(default)
+        facts = native.facts()
+        owned = name in facts.defaults
+        if owned == (default is not None):
+            raise ValueError("%s: %s" % (name, "the solver owns its default (settings.h)" if owned
+                                         else "a setting the solver does not own needs a default"))
+        self.default = bool(facts.defaults[name] if owned else default)
 
     def prop(self, _classes):
         return BoolProperty(name=self.label, description=self.tooltip, default=self.default)

@@ -91,7 +91,8 @@ OBJECT = (
     Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode",
         default=100, hard=(0, 100000), panel=Panel.SOLVER),
     Bool("use_modifiers", "Use Modifiers", "Stylize the mesh as it is shown: modifiers, armature and shape "
-         "keys at the current frame (otherwise the base mesh, under the modifiers)", panel=Panel.MAIN),
+         "keys at the current frame (otherwise the base mesh, under the modifiers)", default=False,
+         panel=Panel.MAIN),
     Choice("output", "Output", "Where the stylized coordinates go",
            (('MESH', "Mesh", "Move the vertices of the mesh itself", 0),
             ('SHAPE_KEY', "Shape Key",
