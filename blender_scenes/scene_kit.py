@@ -133,12 +133,17 @@ def coords(obj):
     return addon.mesh_io.read_vertex_coords(obj.data)
 
 
-def enclosed_volume(obj):
-    """The volume a closed mesh encloses (object space): the sum over its loop triangles of
-    a . (b x c) / 6, in float64."""
-    co = coords(obj).astype(np.float64)
-    a, b, c = (co[corner] for corner in addon.mesh_io.read_loop_triangles(obj.data)[0].T)
+def enclosed_volume(co, triangles):
+    """The volume a closed mesh encloses: the sum over its triangles ((#T,3) indices into the (#V,3)
+    coordinates ``co``) of a . (b x c) / 6, in float64."""
+    co = np.asarray(co, np.float64)
+    a, b, c = (co[corner] for corner in np.asarray(triangles).T)
     return float(np.einsum("ij,ij->", a, np.cross(b, c)) / 6.0)
+
+
+def volume(obj):
+    """enclosed_volume() of ``obj``'s mesh (object space, its loop triangles)."""
+    return enclosed_volume(coords(obj), addon.mesh_io.read_loop_triangles(obj.data)[0])
 
 
 def normalize(obj, size=2.0):
