@@ -12,9 +12,9 @@ any earlier file as it was and no partial one. Imports nothing from Blender.
 """
 
 import os
+import secrets
 import shutil
 import struct
-import tempfile
 
 import numpy as np
 
@@ -57,9 +57,7 @@ class Writer:
         if needed + DISK_MARGIN > free:
             raise OSError("the point cache needs %.1f MB but %s has %.1f MB free"
                           % (needed / 1e6, folder, free / 1e6))
-        handle, self.temp_path = tempfile.mkstemp(dir=folder, prefix=os.path.basename(self.path) + ".",
-                                                  suffix=".partial")
-        self._file = os.fdopen(handle, "wb")
+        self._file, self.temp_path = _new_temporary(self.path)
         self._file.write(HEADER.pack(MAGIC, VERSION, points, float(start), float(rate), samples))
 
     def add(self, coords):
@@ -90,6 +88,20 @@ class Writer:
             self._file.close()
         if os.path.exists(self.temp_path):
             os.remove(self.temp_path)
+
+
+def _new_temporary(path):
+    """A new file '<path>.<random>.partial' open for writing, with the permissions a plain new file
+    gets (tempfile.mkstemp's would be owner-only: render-farm nodes reading the cache as another user
+    could not open it)."""
+    for _ in range(100):
+        candidate = "%s.%s.partial" % (path, secrets.token_hex(4))
+        try:
+            handle = os.open(candidate, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0), 0o666)
+        except FileExistsError:
+            continue
+        return os.fdopen(handle, "wb"), candidate
+    raise OSError("cannot make a temporary file next to %s" % path)
 
 
 class PointCache:

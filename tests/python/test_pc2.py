@@ -38,6 +38,13 @@ def test_round_trip_and_the_exact_layout(tmp_path):
     assert os.listdir(tmp_path) == ["a.pc2"]
 
 
+def test_the_file_gets_the_permissions_of_any_new_file(tmp_path):
+    # Not the owner-only mode of a temporary file: other users (render nodes) must read a cache.
+    _write(tmp_path / "a.pc2", _frames())
+    (tmp_path / "plain").write_bytes(b"")
+    assert os.stat(tmp_path / "a.pc2").st_mode == os.stat(tmp_path / "plain").st_mode
+
+
 def test_the_file_appears_only_at_commit_and_discard_keeps_the_old_one(tmp_path):
     path = tmp_path / "a.pc2"
     _write(path, _frames(seed=1))
