@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 
 #include "gauss/closest_rotation.h"
@@ -87,7 +88,10 @@ Vector3d newton_normal(const PreferenceFunction& style, const Vector3d& n, const
 
 GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, int num_faces,
                          const std::vector<int64_t>& pinned, const double* pin_positions,
-                         double lambda) {
+                         double lambda, Progress* watcher) {
+  Progress unwatched;
+  Progress& progress = watcher ? *watcher : unwatched;
+  progress.start(SetupPhase::topology);
   if (num_vertices <= 0) throw std::invalid_argument("the mesh has no vertices");
   if (num_faces <= 0) throw std::invalid_argument("the mesh has no faces");
   settings::lambda.check(lambda);
@@ -110,7 +114,9 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   std::vector<int64_t> faces(3 * static_cast<size_t>(num_faces));
   for (int f = 0; f < num_faces; ++f)
     for (int k = 0; k < 3; ++k) faces[3 * f + k] = new_of_old_[F[3 * face_order[f] + k]];
+  progress.check();
   topo_ = build_mesh_topology(num_vertices, faces.data(), num_faces);
+  progress.enter(SetupPhase::weights);
   for (int& f : topo_.input_face) f = face_order[f];
   num_input_faces_ = num_faces;
   lambda_ = lambda;
@@ -141,6 +147,7 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   X_ = rest_;
 
   compute_rest_quantities();
+  progress.check();
   const int nF = static_cast<int>(topo_.faces.size());
   normal_star_.assign(nF, Vector3d::UnitZ());
   dual_.assign(nF, {0, 0, 0});
@@ -154,7 +161,8 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
 
   styles_.emplace_back(preset_style(settings::default_preset));
   face_style_.assign(nF, 0);
-  set_pins(pinned, pin_positions);
+  apply_pins(pinned, pin_positions, progress);
+  progress.finish();
 }
 
 void GaussSolver::compute_rest_quantities() {
@@ -231,7 +239,15 @@ void GaussSolver::set_admm_iterations(int n) {
   admm_iterations_ = n;
 }
 
-void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin_positions) {
+void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress* watcher) {
+  Progress unwatched;
+  Progress& progress = watcher ? *watcher : unwatched;
+  progress.start(SetupPhase::ordering);
+  apply_pins(pinned, pin_positions, progress);
+  progress.finish();
+}
+
+void GaussSolver::apply_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress& progress) {
   const int nV = topo_.num_vertices;
   std::vector<Vector3d> targets(pinned.size());
   std::vector<uint8_t> seen(nV, 0);
@@ -261,15 +277,28 @@ void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin
       throw std::invalid_argument(msg.str());
     }
   }
-  pinned_input_ = pinned;
-  pinned_.resize(pinned.size());
-  for (size_t i = 0; i < pinned.size(); ++i) pinned_[i] = new_of_old_[pinned[i]];
-  pin_targets_ = std::move(targets);
+  // Strong guarantee: factor() fills these anew; if it throws (a cancelled or failed factorization,
+  // which leaves cholesky_ as it was) the previous state comes back.
+  auto state = std::tie(pinned_input_, pinned_, pin_targets_, component_free_, component_rest_center_,
+                        component_size_, unknown_of_vertex_, vertex_of_unknown_, fixed_rhs_, rhs_);
+  auto previous = std::make_tuple(std::move(pinned_input_), std::move(pinned_), std::move(pin_targets_),
+                                  std::move(component_free_), std::move(component_rest_center_),
+                                  std::move(component_size_), std::move(unknown_of_vertex_),
+                                  std::move(vertex_of_unknown_), std::move(fixed_rhs_), std::move(rhs_));
+  try {
+    pinned_input_ = pinned;
+    pinned_.resize(pinned.size());
+    for (size_t i = 0; i < pinned.size(); ++i) pinned_[i] = new_of_old_[pinned[i]];
+    pin_targets_ = std::move(targets);
+    factor(progress);
+  } catch (...) {
+    state = std::move(previous);
+    throw;
+  }
   for (size_t i = 0; i < pinned_.size(); ++i) X_[pinned_[i]] = (pin_targets_[i] - center_) / scale_;
-  factor();
 }
 
-void GaussSolver::factor() {
+void GaussSolver::factor(Progress& progress) {
   const int nV = topo_.num_vertices;
   const int nC = topo_.num_components;
   // Fixed vertices: pins, plus one anchor per component without a pin (the ARAP system only
@@ -321,6 +350,7 @@ void GaussSolver::factor() {
     else if (ua >= 0) fixed_rhs_[ua] += w * fixed_pos[b];
     else if (ub >= 0) fixed_rhs_[ub] += w * fixed_pos[a];
   }
+  rhs_.assign(3 * static_cast<size_t>(n), 0.0);  // before the factor: nothing may throw after it
   if (n > 0) {
     Eigen::SparseMatrix<double> A(n, n);
     A.reserve(col_count);
@@ -330,10 +360,9 @@ void GaussSolver::factor() {
       if (ua >= 0 && ub >= 0) A.insert(ub, ua) = -edge_weight_[e];
     }
     A.makeCompressed();
-    cholesky_.factor(A);
+    cholesky_.factor(A, &progress);
   }
   ++factorization_count_;
-  rhs_.assign(3 * static_cast<size_t>(n), 0.0);
 }
 
 void GaussSolver::face_pass() {

@@ -22,6 +22,7 @@
 #include "gauss/cholesky_solver.h"
 #include "gauss/mesh_topology.h"
 #include "gauss/preference_function.h"
+#include "gauss/progress.h"
 #include "gauss/settings.h"
 #include "gauss/thread_tuner.h"
 
@@ -38,10 +39,12 @@ class GaussSolver {
  public:
   // V: #V by 3 row-major coordinates; F: #F by 3 row-major vertex indices.
   // pinned: #P vertex indices; pin_positions: #P by 3 targets (nullptr: the rest positions).
-  // Throws std::invalid_argument on bad input (message says what is wrong).
+  // progress: optional; reports every SetupPhase (progress.h) and cancels the set-up on request.
+  // Throws std::invalid_argument on bad input (message says what is wrong), OutOfMemory
+  // (memory_budget.h) if the factorization would not fit in memory, Cancelled.
   GaussSolver(const double* V, int num_vertices, const int64_t* F, int num_faces,
               const std::vector<int64_t>& pinned = {}, const double* pin_positions = nullptr,
-              double lambda = settings::lambda.default_value);
+              double lambda = settings::lambda.default_value, Progress* progress = nullptr);
 
   // --- Styles: take effect at the next step, never re-factor. ---
   // Default: one style, settings::default_preset with default sigma and mu, on every face.
@@ -54,7 +57,10 @@ class GaussSolver {
   // --- Parameters: lambda only scales Eq. 27's right-hand side, so only pins re-factor. ---
   void set_lambda(double lambda);
   double lambda() const { return lambda_; }
-  void set_pins(const std::vector<int64_t>& pinned, const double* pin_positions = nullptr);
+  // Re-factors (progress: SetupPhase::ordering onwards). On any exception, including Cancelled, the
+  // solver keeps its previous pins and factor.
+  void set_pins(const std::vector<int64_t>& pinned, const double* pin_positions = nullptr,
+                Progress* progress = nullptr);
   void set_admm_iterations(int n);
   int admm_iterations() const { return admm_iterations_; }
 
@@ -77,7 +83,8 @@ class GaussSolver {
 
  private:
   void compute_rest_quantities();
-  void factor();
+  void apply_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress& progress);
+  void factor(Progress& progress);
   void face_pass();
   void fit_rotations();  // rotation_ from face_cov_
   void admm_round(bool first_round);
