@@ -151,26 +151,31 @@ void CholeskySolver::backward(int first_super, int last_super, double* y) const 
     const double* U = values_.get() + value_start_[s];
     double* yJ = y + 3 * static_cast<size_t>(f);
     // y_J -= L(R, J)^T x_R: the rows below are final (they lie above in the tree). Four rows at a
-    // time, so y_J is loaded and stored once per four columns of U.
+    // time, so y_J is loaded and stored once per four columns of U; the x values are copied to
+    // locals because the compiler cannot know they do not alias y_J.
     int c = w;
     for (; c + 4 <= m; c += 4) {
-      const double* x0 = y + 3 * static_cast<size_t>(R[c]);
-      const double* x1 = y + 3 * static_cast<size_t>(R[c + 1]);
-      const double* x2 = y + 3 * static_cast<size_t>(R[c + 2]);
-      const double* x3 = y + 3 * static_cast<size_t>(R[c + 3]);
+      double x[4][3];
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 3; ++i) x[j][i] = y[3 * static_cast<size_t>(R[c + j]) + i];
       const double* u0 = U + int64_t{w} * c;
       const double* u1 = u0 + w;
       const double* u2 = u1 + w;
       const double* u3 = u2 + w;
-      for (int k = 0; k < w; ++k)
-        for (int i = 0; i < 3; ++i)
-          yJ[3 * k + i] -= (u0[k] * x0[i] + u1[k] * x1[i]) + (u2[k] * x2[i] + u3[k] * x3[i]);
+      for (int k = 0; k < w; ++k) {
+        const double a = u0[k], b = u1[k], d = u2[k], e = u3[k];
+        for (int i = 0; i < 3; ++i) yJ[3 * k + i] -= (a * x[0][i] + b * x[1][i]) + (d * x[2][i] + e * x[3][i]);
+      }
     }
     for (; c < m; ++c) {
-      const double* x = y + 3 * static_cast<size_t>(R[c]);
+      const double* xr = y + 3 * static_cast<size_t>(R[c]);
+      const double x0 = xr[0], x1 = xr[1], x2 = xr[2];
       const double* u = U + int64_t{w} * c;
-      for (int k = 0; k < w; ++k)
-        for (int i = 0; i < 3; ++i) yJ[3 * k + i] -= u[k] * x[i];
+      for (int k = 0; k < w; ++k) {
+        yJ[3 * k] -= u[k] * x0;
+        yJ[3 * k + 1] -= u[k] * x1;
+        yJ[3 * k + 2] -= u[k] * x2;
+      }
     }
     // Diagonal block: L_JJ^T x_J = y_J, last unknown first, by columns of U (contiguous).
     for (int k = w - 1; k >= 0; --k) {
