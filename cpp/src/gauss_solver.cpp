@@ -10,6 +10,7 @@
 
 
 #include "gauss/closest_rotation.h"
+#include "gauss/memory_budget.h"
 #include "gauss/parallel.h"
 #include "gauss/presets.h"
 #include "gauss/settings.h"
@@ -28,6 +29,10 @@ constexpr double kDegenerateRatio = 1e-8;
 // Cotangent weight given to each edge of a face that is degenerate in the rest pose: small and
 // positive, so the face still ties its vertices to the mesh and the Laplacian stays definite.
 constexpr double kDegenerateWeight = 1e-3;
+
+// Memory the solver keeps per face (topology, rest quantities, ADMM buffers, edges) and per vertex,
+// rounded down from its members' sizes, for the early memory check.
+constexpr int64_t kSetupBytesPerFace = 400, kSetupBytesPerVertex = 200;
 
 // Below this many items a loop runs on one thread: forking costs more than it saves, and on a
 // loaded machine (Blender's own threads) spinning workers can cost far more.
@@ -95,6 +100,10 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   if (num_vertices <= 0) throw std::invalid_argument("the mesh has no vertices");
   if (num_faces <= 0) throw std::invalid_argument("the mesh has no faces");
   settings::lambda.check(lambda);
+  // The per-face and per-vertex arrays alone (a lower bound; the factor is checked once its size is
+  // known): a mesh far too big for the machine is refused before anything is allocated.
+  check_memory(kSetupBytesPerFace * int64_t{num_faces} + kSetupBytesPerVertex * int64_t{num_vertices},
+               "a mesh of " + std::to_string(num_vertices) + " vertices and " + std::to_string(num_faces) + " faces");
   for (int i = 0; i < 3 * num_vertices; ++i)
     if (!std::isfinite(V[i])) {
       std::ostringstream msg;

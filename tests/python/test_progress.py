@@ -181,3 +181,12 @@ def test_progress_must_be_a_progress():
         gauss_core.Solver(V, F, progress=0.5)
     with pytest.raises(TypeError, match="Progress"):
         gauss_core.Solver(V, F).set_pins([0], progress="p")
+
+
+def test_a_mesh_far_too_big_is_refused_before_the_set_up(monkeypatch):
+    V, F = icosphere(3)
+    monkeypatch.setenv("GAUSS_MEMORY_BUDGET_MB", "0.1")
+    p = gauss_core.Progress()
+    with pytest.raises(MemoryError, match="a mesh of 642 vertices and 1280 faces needs about"):
+        gauss_core.Solver(V, F, progress=p)
+    assert p.seconds["ordering"] == 0  # refused before the factorization's own check
