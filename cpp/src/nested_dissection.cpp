@@ -19,9 +19,8 @@ namespace {
 // sparse or sparser at these sizes and AMD is several times faster than further dissection.
 constexpr int kLeafSize = 1000;
 constexpr int kSmallGraph = 50000;
-// Pieces split serially before the rest is ordered in parallel (fixed, so that the split, and with
-// it the result, does not depend on the number of threads).
-constexpr int kTopPieces = 4;
+// Pieces split level by level before each is ordered on its own (the results do not depend on it).
+constexpr int kTopPieces = 8;
 
 struct Piece {
   int begin, end;  // positions in the permutation; the piece's vertices carry label begin
@@ -174,43 +173,49 @@ class Dissection {
 std::vector<int> nested_dissection(int n, const std::vector<int>& adj_start, const std::vector<int>& adj,
                                    Progress& progress) {
   Dissection d(n, adj_start.data(), adj.data(), progress);
-  std::vector<int> scratch(n);
   if (n <= kSmallGraph) {
+    std::vector<int> scratch(n);
     d.order_leaf({0, n}, scratch.data());
     progress.advance(1.0);
     return std::move(d.permutation());
   }
-  // Split the biggest piece until there are kTopPieces, then order those in parallel. Two pieces
-  // never share a vertex, and a piece's vertices only neighbour its own or separator vertices, which
-  // no thread writes any more, so the threads need no synchronization.
+  // Level by level, every piece of a level on the pool at once, until there are kTopPieces; then
+  // each of those with everything below it. Two pieces never share a vertex, and a piece's vertices
+  // only neighbour its own or separator vertices, which no thread writes any more, so the threads
+  // need no synchronization (and each piece is ordered the same whichever thread takes it).
   std::vector<Piece> pending{{0, n}};
-  while (static_cast<int>(pending.size()) < kTopPieces) {
-    auto largest = std::max_element(pending.begin(), pending.end(), [](const Piece& a, const Piece& b) {
-      return a.end - a.begin < b.end - b.begin;
+  std::vector<std::exception_ptr> failure;
+  auto run = [&](int tasks, auto&& task) {
+    failure.assign(tasks, nullptr);
+    parallel::for_tasks(tasks, n > 20000, [&](int t) {
+      try {
+        task(t);
+      } catch (...) {
+        failure[t] = std::current_exception();
+      }
     });
-    if (largest == pending.end() || largest->end - largest->begin <= kLeafSize) break;
-    const Piece p = *largest;
-    pending.erase(largest);
-    d.split(p, scratch.data(), pending);
+    for (const std::exception_ptr& e : failure)
+      if (e) std::rethrow_exception(e);
     progress.check();
-  }
+  };
   // Biggest first: for_tasks deals tasks round-robin, which then balances the threads.
-  std::stable_sort(pending.begin(), pending.end(),
-                   [](const Piece& a, const Piece& b) { return a.end - a.begin > b.end - b.begin; });
+  auto biggest_first = [](const Piece& a, const Piece& b) { return a.end - a.begin > b.end - b.begin; };
+  while (static_cast<int>(pending.size()) < kTopPieces &&
+         std::any_of(pending.begin(), pending.end(), [](const Piece& p) { return p.end - p.begin > kLeafSize; })) {
+    std::stable_sort(pending.begin(), pending.end(), biggest_first);
+    const int tasks = static_cast<int>(pending.size());
+    std::vector<std::vector<Piece>> children(tasks);
+    std::vector<std::vector<int>> scratches(tasks);
+    for (int t = 0; t < tasks; ++t) scratches[t].resize(pending[t].end - pending[t].begin);
+    run(tasks, [&](int t) { d.split(pending[t], scratches[t].data(), children[t]); });
+    pending.clear();
+    for (const std::vector<Piece>& c : children) pending.insert(pending.end(), c.begin(), c.end());
+  }
+  std::stable_sort(pending.begin(), pending.end(), biggest_first);
   const int tasks = static_cast<int>(pending.size());
   std::vector<std::vector<int>> scratches(tasks);
   for (int t = 0; t < tasks; ++t) scratches[t].resize(pending[t].end - pending[t].begin);
-  std::vector<std::exception_ptr> failure(tasks);
-  parallel::for_tasks(tasks, n > 20000, [&](int t) {
-    try {
-      d.order(pending[t], scratches[t]);
-    } catch (...) {
-      failure[t] = std::current_exception();
-    }
-  });
-  for (const std::exception_ptr& e : failure)
-    if (e) std::rethrow_exception(e);
-  progress.check();
+  run(tasks, [&](int t) { d.order(pending[t], scratches[t]); });
   return std::move(d.permutation());
 }
 

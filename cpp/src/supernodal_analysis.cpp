@@ -134,7 +134,8 @@ int64_t SupernodalStructure::top_values() const {
 
 int64_t SupernodalStructure::numeric_bytes() const {
   const int64_t doubles = num_values() + int64_t{kFactorParts - 1} * top_values() +
-                          int64_t{kFactorParts} * max_update + n + int64_t{3} * kFactorParts * (n - top_col);
+                          int64_t{kFactorParts} * max_update_columns * kUpdateSlice + n +
+                          int64_t{3} * kFactorParts * (n - top_col);
   return 8 * doubles + int64_t{4} * kFactorParts * n;
 }
 
@@ -282,7 +283,7 @@ SupernodalStructure analyse_supernodal(const Eigen::SparseMatrix<double>& A_lowe
   {
     std::vector<int> fill(S.update_start.begin(), S.update_start.end() - 1);
     for_each_update([&](int s, int d, int offset, int cols, int rows) {
-      S.max_update = std::max(S.max_update, int64_t{cols} * rows);
+      S.max_update_columns = std::max(S.max_update_columns, cols);
       const double flops = 2.0 * (S.col_start[d + 1] - S.col_start[d]) * cols * rows;
       if (pushed(s, d)) {
         S.top_offset[d] = std::min(S.top_offset[d], offset);

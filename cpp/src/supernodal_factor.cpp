@@ -24,7 +24,7 @@ constexpr int64_t kSmallUpdate = 2048;
 
 struct Workspace {
   std::vector<int> position;   // n: row of L -> column of the block being computed
-  std::vector<double> update;  // the largest update of the structure
+  std::vector<double> update;  // one slice of the largest update (max_update_columns * kUpdateSlice)
 };
 
 std::unique_ptr<double[]> allocate(int64_t count, const char* what) {
@@ -115,12 +115,15 @@ class Factorization {
       }
       return;
     }
-    MatrixMap W(ws.update.data(), cols, rows_below);
-    W.noalias() = ConstMatrixMap(Ud, wd, cols).transpose() * ConstMatrixMap(Ud, wd, rows_below);
-    for (int b = 0; b < rows_below; ++b) {
-      double* target = column(b);
-      const double* wb = ws.update.data() + int64_t{cols} * b;
-      for (int a = 0; a < cols && a <= b; ++a) target[row(a)] -= wb[a];
+    for (int b0 = 0; b0 < rows_below; b0 += kUpdateSlice) {
+      const int b1 = std::min(b0 + kUpdateSlice, rows_below);
+      MatrixMap W(ws.update.data(), cols, b1 - b0);
+      W.noalias() = ConstMatrixMap(Ud, wd, cols).transpose() * ConstMatrixMap(Ud + int64_t{wd} * b0, wd, b1 - b0);
+      for (int b = b0; b < b1; ++b) {
+        double* target = column(b);
+        const double* wb = ws.update.data() + int64_t{cols} * (b - b0);
+        for (int a = 0; a < cols && a <= b; ++a) target[row(a)] -= wb[a];
+      }
     }
   }
 
@@ -145,7 +148,7 @@ std::unique_ptr<double[]> factor_supernodal(const SupernodalStructure& S, Progre
   std::vector<Workspace> workspaces(kFactorParts);
   for (Workspace& ws : workspaces) {
     ws.position.resize(S.n);
-    ws.update.resize(S.max_update);
+    ws.update.resize(int64_t{S.max_update_columns} * kUpdateSlice);
   }
   for (int s = first_top; s < num_super; ++s) F.assemble(s, F.block(s), workspaces[0]);
 

@@ -22,6 +22,9 @@
 namespace gauss {
 
 constexpr int kFactorParts = 2;
+// The numeric factorization computes an update's dense product in slices of this many columns (of
+// the rows it updates), so its workspace stays small: max_update_columns * kUpdateSlice.
+constexpr int kUpdateSlice = 256;
 
 struct SupernodalStructure {
   int n = 0;
@@ -51,8 +54,9 @@ struct SupernodalStructure {
   std::vector<double> work;
   // A with rows and columns numbered as L, lower triangle by columns, for assembling the blocks.
   LowerColumns A;
-  // Largest update (rows times columns), for the numeric factorization's workspace.
-  int64_t max_update = 0;
+  // Most columns of a target any update touches (update_count, and the same for pushed updates),
+  // for the numeric factorization's workspace.
+  int max_update_columns = 0;
 
   int num_supernodes() const { return static_cast<int>(col_start.size()) - 1; }
   int64_t num_values() const { return value_start.empty() ? 0 : value_start.back(); }
