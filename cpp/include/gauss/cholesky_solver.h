@@ -11,8 +11,10 @@
 //
 // Threads: the elimination tree is always cut into two groups of subtrees (kFactorParts) plus the
 // rows above the cut, whatever the number of threads (the cut decides the numbering and with it the
-// rounding). The two groups are factored and swept in parallel, the rows above the cut alone, so
-// results are bit-identical for any thread count.
+// rounding). The two groups are factored and swept in parallel, the rows above the cut after them
+// (their big dense blocks tile by tile, the tiling fixed by the block sizes), so results are
+// bit-identical for any thread count. Eigen blocks its dense products by the cache sizes it detects,
+// so a machine with other caches may round differently.
 #include <Eigen/SparseCore>
 #include <memory>
 #include <vector>

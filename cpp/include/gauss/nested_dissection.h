@@ -2,12 +2,12 @@
 // Fill-reducing ordering of a sparse symmetric matrix by nested dissection (George 1973): a small set
 // of vertices of the matrix's graph, the separator, splits it in two; both halves are ordered first
 // (recursively) and the separator last, so eliminating one half never fills into the other. On a mesh
-// Laplacian the separators are rings of vertices around the surface, and the factor comes out much
-// sparser than with minimum degree (README, Performance: the measured fill of both).
+// Laplacian the separators are rings of vertices around the surface, and on big meshes the factor
+// comes out much sparser than with minimum degree (README, Performance: the measured fill of both).
 //
-// Separators: the best-balanced thin level of a breadth-first level structure rooted at a
-// pseudo-peripheral vertex (George & Liu), reduced to the vertices that touch the far side. Pieces of
-// at most 64 vertices are ordered by minimum degree within the piece.
+// Separators come from graph_bisection.h (multilevel). Graphs of at most 50,000 vertices, and the
+// pieces of at most 1,000 vertices the dissection ends in, are ordered by approximate minimum degree
+// (Eigen's AMD): at those sizes it measured as sparse or sparser, and faster.
 //
 // Input:  n vertices; the neighbours of v are adj[adj_start[v] .. adj_start[v+1]) (symmetric, no self
 //         loops).
