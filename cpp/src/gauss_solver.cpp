@@ -124,7 +124,7 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   for (int f = 0; f < num_faces; ++f)
     for (int k = 0; k < 3; ++k) faces[3 * f + k] = new_of_old_[F[3 * face_order[f] + k]];
   progress.check();
-  topo_ = build_mesh_topology(num_vertices, faces.data(), num_faces);
+  topo_ = build_mesh_topology(num_vertices, faces.data(), num_faces, &progress);
   progress.enter(SetupPhase::weights);
   for (int& f : topo_.input_face) f = face_order[f];
   num_input_faces_ = num_faces;

@@ -335,11 +335,13 @@ std::vector<uint8_t> level_separator(const WeightedGraph& g, int root) {
 
 }  // namespace
 
-std::vector<uint8_t> vertex_separator(const WeightedGraph& g) {
+std::vector<uint8_t> vertex_separator(const WeightedGraph& g, const Progress& progress) {
+  const std::vector<uint8_t> stopped(g.n, 2);
   std::vector<WeightedGraph> coarse;
   std::vector<std::vector<int>> cmaps;
   const WeightedGraph* current = &g;
   while (current->n > kCoarsest) {
+    if (progress.cancelled()) return stopped;
     std::vector<int> cmap;
     WeightedGraph c = coarsen(*current, cmap);
     if (c.n > 0.95 * current->n) break;  // matching stalled (stars and the like)
@@ -362,6 +364,7 @@ std::vector<uint8_t> vertex_separator(const WeightedGraph& g) {
   }
   // Back to the finest graph, refining at every level.
   for (int level = static_cast<int>(coarse.size()) - 1; level >= 0; --level) {
+    if (progress.cancelled()) return stopped;
     const WeightedGraph& finer = level > 0 ? coarse[level - 1] : g;
     std::vector<uint8_t> fine_side(finer.n);
     for (int v = 0; v < finer.n; ++v) fine_side[v] = side[cmaps[level][v]];

@@ -73,7 +73,7 @@ class Dissection {
     }
     g.edge_weight.assign(g.adj.size(), 1);
     g.weight.assign(m, 1);
-    const std::vector<uint8_t> side = vertex_separator(g);
+    const std::vector<uint8_t> side = vertex_separator(g, progress_);
     // Both parts first, the separator last; each keeps its vertices' order.
     int size[3] = {0, 0, 0};
     for (int i = 0; i < m; ++i) ++size[side[i]];

@@ -67,6 +67,7 @@ void Progress::close_phase() {
 }
 
 void Progress::enter(SetupPhase phase) {
+  check();
   close_phase();
   const int p = static_cast<int>(phase);
   phase_.store(p, std::memory_order_relaxed);

@@ -21,6 +21,8 @@ using ConstMatrixMap = Eigen::Map<const Eigen::MatrixXd>;
 // Updates with fewer multiply-adds than this are computed by plain loops: Eigen's product set-up
 // costs more than the arithmetic.
 constexpr int64_t kSmallUpdate = 2048;
+// A big supernode can receive thousands of updates: the cancel flag is polled every this many.
+constexpr int kUpdatesPerCheck = 32;
 
 struct Workspace {
   std::vector<int> position;   // n: row of L -> column of the block being computed
@@ -58,9 +60,10 @@ class Factorization {
   }
 
   // Left-looking: subtracts from block s the updates of the descendants listed for it. ws.position
-  // must be set for s.
-  void pull_updates(int s, Workspace& ws) const {
+  // must be set for s. Stops early (the caller sees it) once the progress is cancelled.
+  void pull_updates(int s, Workspace& ws, const Progress& progress) const {
     for (int t = S_.update_start[s]; t < S_.update_start[s + 1]; ++t) {
+      if (t % kUpdatesPerCheck == 0 && progress.cancelled()) return;
       const int d = S_.update_source[t], offset = S_.update_offset[t];
       const int* Rd = rows(d) + offset;
       const int f = S_.col_start[s], w = width(s);
@@ -169,7 +172,8 @@ std::unique_ptr<double[]> factor_supernodal(const SupernodalStructure& S, Progre
       for (int s = S.part_start[t]; s < S.part_start[t + 1]; ++s) {
         if (failed.load(std::memory_order_relaxed) || progress.cancelled()) return;
         F.assemble(s, F.block(s), ws);
-        F.pull_updates(s, ws);
+        F.pull_updates(s, ws, progress);
+        if (progress.cancelled()) return;
         if (!factor_block(F.block(s), F.width(s), F.height(s), false, progress)) {
           failed.store(!progress.cancelled(), std::memory_order_relaxed);
           return;
@@ -193,7 +197,8 @@ std::unique_ptr<double[]> factor_supernodal(const SupernodalStructure& S, Progre
       }
       for (int s = first_top; s < num_super && !progress.cancelled(); ++s) {
         F.set_positions(s, workspaces[0]);
-        F.pull_updates(s, workspaces[0]);
+        F.pull_updates(s, workspaces[0], progress);
+        if (progress.cancelled()) break;
         if (!factor_block(F.block(s), F.width(s), F.height(s), S.n > 4096, progress)) {
           failed = !progress.cancelled();
           break;

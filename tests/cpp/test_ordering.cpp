@@ -98,7 +98,7 @@ TEST(EliminationTree, TreeAndColumnCountsMatchSymbolicElimination) {
 TEST(GraphBisection, SeparatorSeparatesAndBalances) {
   for (int levels : {2, 4, 5}) {
     const gauss::WeightedGraph g = mesh_graph(gauss_test::icosphere(levels));
-    const std::vector<uint8_t> side = gauss::vertex_separator(g);
+    const std::vector<uint8_t> side = gauss::vertex_separator(g, gauss::Progress());
     int size[3] = {0, 0, 0};
     for (uint8_t s : side) ++size[s];
     SCOPED_TRACE("vertices " + std::to_string(g.n));

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "gauss/progress.h"
+
 namespace gauss {
 
 // A graph with vertex and edge weights (coarse vertices stand for several fine ones).
@@ -22,6 +24,8 @@ struct WeightedGraph {
 // side (g.n): 0 or 1 for the two parts, 2 for the separator; no edge joins part 0 and part 1, and
 // neither part weighs more than about 60% of the graph (less balance would cost more fill than a
 // smaller separator saves). Deterministic. g must be connected and have at least 3 vertices.
-std::vector<uint8_t> vertex_separator(const WeightedGraph& g);
+// progress: polled between levels; once it is cancelled the result is all separator (valid, useless:
+// the caller stops).
+std::vector<uint8_t> vertex_separator(const WeightedGraph& g, const Progress& progress);
 
 }  // namespace gauss

@@ -55,7 +55,8 @@ class Progress {
   // Starts a set-up that runs the phases [first, SetupPhase::count): fraction 0, timings cleared.
   // Throws Cancelled if cancel() was called before (a cancelled Progress stays cancelled).
   void start(SetupPhase first);
-  // Enters a phase (ends the previous one): the fraction jumps to the start of its slice.
+  // Enters a phase (ends the previous one): the fraction jumps to the start of its slice. Throws
+  // Cancelled if cancel() was called.
   void enter(SetupPhase phase);
   // Reports that `done` (0..1) of the current phase's work is finished. Thread-safe, so workers of a
   // parallel phase may report directly; the fraction only ever grows.
