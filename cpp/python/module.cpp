@@ -277,7 +277,8 @@ set_pins(..., progress=p) and watch it from another thread (the set-up releases 
 p.fraction   0.0 .. 1.0, never decreases; roughly proportional to the set-up's time
 p.phase      '' before the start, then 'topology', 'weights', 'ordering', 'symbolic',
              'factorizing' (set_pins: from 'ordering'), 'done' at the end
-p.cancel()   thread-safe; the set-up raises gauss_core.Cancelled soon after (within ~0.1 s)
+p.cancel()   thread-safe; the set-up raises gauss_core.Cancelled soon after (it checks every few
+             milliseconds of work, then frees what it allocated)
 p.cancelled  whether cancel() was called (a cancelled Progress stays cancelled)
 p.seconds    {phase: seconds} of the last set-up it watched)doc")
       .def(py::init<>())
