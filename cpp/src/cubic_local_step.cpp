@@ -56,6 +56,7 @@ CubicLocalStep::CubicLocalStep(const MeshTopology& topo, const std::vector<Vecto
   weight_.assign(nV, 0.0);
   frame_.assign(nV, 0);
   frames_.assign(1, Matrix3d::Identity());
+  frame_is_identity_.assign(1, 1);
   state_.resize(nV);
   reset();
 }
@@ -76,6 +77,8 @@ void CubicLocalStep::set_vertex_styles(const std::vector<double>& strength, cons
   }
   frame_ = frame;
   frames_ = frames;
+  frame_is_identity_.assign(frames.size(), 0);
+  for (size_t i = 0; i < frames.size(); ++i) frame_is_identity_[i] = frames[i] == Matrix3d::Identity();
 }
 
 void CubicLocalStep::reset() {
@@ -83,9 +86,7 @@ void CubicLocalStep::reset() {
     state_[v] = AdmmState{frames_[frame_[v]].transpose() * normal_[v], Vector3d::Zero(), cubic_admm::kRhoInit, 0};
 }
 
-void CubicLocalStep::fit(const MeshTopology& topo, const std::vector<Vector3d>& X, double lambda,
-                         std::vector<Matrix3d>& rotation, std::vector<Eigen::Quaterniond>& rotation_q) {
-  using namespace cubic_admm;
+void CubicLocalStep::covariances(const MeshTopology& topo, const std::vector<Vector3d>& X) {
   const int nF = static_cast<int>(topo.faces.size());
   parallel::for_each(nF, parallel::kMinParallelItems, [&](int f) {
     const auto& t = topo.faces[f];
@@ -94,8 +95,14 @@ void CubicLocalStep::fit(const MeshTopology& topo, const std::vector<Vector3d>& 
     c.noalias() += (X[t[0]] - X[t[2]]) * slot_rest_[f][2].transpose();
     face_cov_[f] = c;
   });
+}
+
+void CubicLocalStep::fit(const MeshTopology& topo, double lambda, std::vector<Matrix3d>& rotation,
+                         std::vector<Eigen::Quaterniond>& rotation_q) {
+  using namespace cubic_admm;
   const double sqrt6_abs = std::sqrt(6.0) * kAbsTol, sqrt3_abs = std::sqrt(3.0) * kAbsTol;
-  parallel::for_each(topo.num_vertices, parallel::kMinParallelItems, [&](int v) {
+  // A vertex's ADMM costs several times a typical loop item, so fewer vertices already pay for a fork.
+  parallel::for_each(topo.num_vertices, parallel::kMinParallelItems / 4, [&](int v) {
     const int begin = topo.vertex_corner_start[v], end = topo.vertex_corner_start[v + 1];
     if (begin == end) return;
     Matrix3d M = face_cov_[topo.vertex_corners[begin] / 3];
@@ -108,6 +115,7 @@ void CubicLocalStep::fit(const MeshTopology& topo, const std::vector<Vector3d>& 
       return;
     }
     const Matrix3d& Q = frames_[frame_[v]];
+    const bool turned = !frame_is_identity_[frame_[v]];  // most vertices: an unrotated cube
     const Vector3d& n = normal_[v];
     Vector3d z = s.z, u = s.u;
     double rho = s.rho;
@@ -116,8 +124,9 @@ void CubicLocalStep::fit(const MeshTopology& topo, const std::vector<Vector3d>& 
     while (it < kMaxIterations) {
       ++it;
       // R: min ARAP + rho/2 ||R n - Q (z - u)||^2, i.e. the closest rotation to M + rho Q (z - u) n^T.
-      R = closest_rotation_warm(M + (rho * (Q * (z - u))) * n.transpose(), rotation_q[v]);
-      const Vector3d y = Q.transpose() * (R * n);
+      const Vector3d target = turned ? Vector3d(Q * (z - u)) : Vector3d(z - u);
+      R = closest_rotation_warm(M + (rho * target) * n.transpose(), rotation_q[v]);
+      const Vector3d y = turned ? Vector3d(Q.transpose() * (R * n)) : Vector3d(R * n);
       const Vector3d z_old = z;
       z = soft_threshold(y + u, w / rho);
       u += y - z;

@@ -269,8 +269,11 @@ void GaussSolver::step() {
     // global step does not read them.
     for (int r = 0; r < admm_iterations_; ++r) admm_round(r == 0);
   } else {
-    timings_.faces = timings_.rotations = 0;
-    cubic_.fit(topo_, X_, cubic_lambda_, rotation_, rotation_q_);
+    cubic_.covariances(topo_, X_);
+    timings_.faces = ms_since(t0);
+    timings_.rotations = 0;
+    t0 = Clock::now();
+    cubic_.fit(topo_, cubic_lambda_, rotation_, rotation_q_);
   }
   timings_.admm = ms_since(t0);
   t0 = Clock::now();

@@ -20,12 +20,14 @@
 // iteration cap keeps its last iterate (the reference then leaves that rotation uninitialized and
 // its state unsaved), a vertex without a normal (zero-area star) or with lambda_i = 0 takes the plain
 // ARAP rotation, rho stays within [kMinRho, kMaxRho], and the start is z = Q^T n, u = 0 (the
-// reference starts from random z and u).
+// reference starts from random z and u; a start at the rest pose's own dual, u = lambda_i / rho
+// sign(Q^T n), was tried: it did not keep a cube's corners any better and took Spot at lambda 0.4 to a
+// share 0.01 further from the reference's, in 941 steps instead of 279).
 //
 // Usage (geometry-central style: set-up in the constructor, no allocation in fit()):
 //   CubicLocalStep cubic(topo, rest, edge_weight);
 //   cubic.set_vertex_styles(strength, frame_of_vertex, frames);   // when styles change
-//   per step: cubic.fit(topo, X, lambda, R, q);                   // then the ARAP global step
+//   per step: cubic.covariances(topo, X); cubic.fit(topo, lambda, R, q);  // then ARAP's global step
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
@@ -66,12 +68,13 @@ class CubicLocalStep {
   // The ADMM state back to its start (z = Q^T n, u = 0, rho = kRhoInit).
   void reset();
 
-  // One local step on the current vertices X (#V by 3, normalized frame) with the global lambda:
-  // rotation (#V) receives each referenced vertex's R_i; rotation_q (#V) is the rotation fit's warm
-  // start, read and updated. Parallel over vertices, the same result for any thread count; no
-  // allocation.
-  void fit(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& X, double lambda,
-           std::vector<Eigen::Matrix3d>& rotation, std::vector<Eigen::Quaterniond>& rotation_q);
+  // A local step in two parts, each parallel, the same for any thread count, without allocation.
+  // covariances: the ARAP covariance of every face from the current vertices X (#V by 3, normalized
+  // frame). fit: with those and the global lambda, rotation (#V) receives each referenced vertex's
+  // R_i; rotation_q (#V) is the rotation fit's warm start, read and updated.
+  void covariances(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& X);
+  void fit(const MeshTopology& topo, double lambda, std::vector<Eigen::Matrix3d>& rotation,
+           std::vector<Eigen::Quaterniond>& rotation_q);
 
   // Read-outs: ADMM iterations of the last fit() summed over the vertices that ran one; the cubic
   // term sum_i lambda_i ||Q_i^T R_i n_i||_1 of the given rotations (#V).
@@ -93,6 +96,7 @@ class CubicLocalStep {
   std::vector<double> weight_;                                // #V a_i * m_i (zero where n_i is)
   std::vector<int> frame_;                                    // #V
   std::vector<Eigen::Matrix3d> frames_;                       // Q
+  std::vector<char> frame_is_identity_;                       // per frame: Q == I (skips two products)
   std::vector<std::array<Eigen::Vector3d, 3>> slot_rest_;     // #F by 3: w_jk d^_jk of each slot
   std::vector<Eigen::Matrix3d> face_cov_;                     // #F per step: sum_k d_k (w d^_k)^T
   std::vector<AdmmState> state_;                              // #V
