@@ -131,6 +131,13 @@ void CubicLocalStep::fit(const MeshTopology& topo, double lambda, std::vector<Ma
       z = soft_threshold(y + u, w / rho);
       u += y - z;
       const double primal = (z - y).norm(), dual = rho * (z - z_old).norm();
+      // The reference's stopping rule (rho u is the same before and after a rescaling below). Unlike
+      // the reference, rho is not rebalanced on the iteration that stops: there both residuals are
+      // rounding-level noise, and rescaling by their ratio, step after step, put vertices into limit
+      // cycles (rho up, up, down, down) that kept reldV from falling below 1e-3.
+      const double eps_primal = sqrt6_abs + kRelTol * std::max(y.norm(), z.norm());
+      const double eps_dual = sqrt3_abs + kRelTol * rho * u.norm();
+      if (primal < eps_primal && dual < eps_dual) break;
       if (primal > kMu * dual && rho * kTau <= kMaxRho) {
         rho *= kTau;
         u /= kTau;
@@ -138,9 +145,6 @@ void CubicLocalStep::fit(const MeshTopology& topo, double lambda, std::vector<Ma
         rho /= kTau;
         u *= kTau;
       }
-      const double eps_primal = sqrt6_abs + kRelTol * std::max(y.norm(), z.norm());
-      const double eps_dual = sqrt3_abs + kRelTol * rho * u.norm();
-      if (primal < eps_primal && dual < eps_dual) break;
     }
     s.z = z;
     s.u = u;
