@@ -108,7 +108,7 @@ OBJECT = (
            preset_identifier(FACTS.defaults["method"]), live=Live.SETTER, panel=Panel.METHOD),
     Float("cubic_lambda", "Cubic Lambda", "How cubic the shape becomes versus keeping its shape (0.2: the "
           "Cubic Stylization paper's default)", soft=(0.0, 2.0), live=Live.SETTER, panel=Panel.METHOD,
-          relevant=is_cubic),
+          text="Lambda", relevant=is_cubic),
     Float("lam", "Lambda", "How strongly faces follow their style versus keeping their shape",
           soft=(0.0, 20.0), live=Live.SETTER, panel=Panel.SOLVER, relevant=_not_cubic),
     Int("admm_iterations", "ADMM Iterations", "Inner iterations per solver step",

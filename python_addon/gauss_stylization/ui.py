@@ -79,9 +79,10 @@ class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
         layout = self.layout
         _draw_rows(_split_column(layout), obj, settings, schema.OBJECT, Panel.METHOD)
         if schema.is_cubic(settings):
-            note = layout.column(align=True)
-            note.label(text="Cubic: each slot's Mu and Rotation apply,", icon='INFO')
-            note.label(text="its Style, Sigma and Axis Weight do not", icon='BLANK1')
+            note = layout.column(align=True)  # short lines: the sidebar is narrow
+            note.label(text="Cubic uses each slot's Mu", icon='INFO')
+            note.label(text="and Rotation; its Style,", icon='BLANK1')
+            note.label(text="Sigma, Axis Weight: unused", icon='BLANK1')
         row = layout.row()
         row.template_list("GAUSS_UL_styles", "", settings, "styles", settings, "active_style_index", rows=3)
         buttons = row.column(align=True)

@@ -5,6 +5,7 @@ import bpy
 import numpy as np
 
 import helpers
+from test_schema import _Layout  # records the rows a panel draws
 
 
 def _session(addon, obj):
@@ -74,7 +75,7 @@ def test_cubic_keeps_everything_else_of_the_run(addon):
 def test_the_panel_shows_cubic_lambda_only_for_cubic(addon):
     obj = helpers.suzanne(levels=0)
     rows = []
-    layout = _Recorder(rows)
+    layout = _Layout(rows)
     panel = addon.fields.Panel.METHOD
     addon.ui._draw_rows(layout, obj, obj.gauss_stylization, addon.schema.OBJECT, panel)
     assert rows == ["method"]
@@ -86,13 +87,3 @@ def test_the_panel_shows_cubic_lambda_only_for_cubic(addon):
     addon.ui._draw_rows(layout, obj, obj.gauss_stylization, addon.schema.OBJECT, addon.fields.Panel.SOLVER)
     assert rows == ["iterations"]  # Lambda and ADMM Iterations are the Gauss method's
 
-
-class _Recorder:
-    def __init__(self, rows):
-        self.rows = rows
-
-    def prop(self, owner, name, text=None):
-        self.rows.append(name)
-
-    def prop_search(self, owner, name, *_args, text=None):
-        self.rows.append(name)
