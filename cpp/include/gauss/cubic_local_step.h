@@ -16,6 +16,7 @@
 // weights every half-edge of a vertex's faces by the Laplacian's whole edge weight L_jk (not by the
 // face's half of it, as ARAP's spokes-and-rims energy would), its tolerances and caps are the
 // constants below, and lambda means the same in a frame normalized to a unit bounding box. It differs
+// in one choice: rho is not rebalanced on the iteration that meets the stopping rule (see fit()). And
 // where the reference has no answer: a vertex whose ADMM does not meet the tolerances within the
 // iteration cap keeps its last iterate (the reference then leaves that rotation uninitialized and
 // its state unsaved), a vertex without a normal (zero-area star) or with lambda_i = 0 takes the plain
