@@ -80,9 +80,9 @@ class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
         _draw_rows(_split_column(layout), obj, settings, schema.OBJECT, Panel.METHOD)
         if schema.is_cubic(settings):
             note = layout.column(align=True)  # short lines: the sidebar is narrow
-            note.label(text="Cubic uses each slot's Mu", icon='INFO')
-            note.label(text="and Rotation; its Style,", icon='BLANK1')
-            note.label(text="Sigma, Axis Weight: unused", icon='BLANK1')
+            note.label(text="Cubic uses each slot's", icon='INFO')
+            note.label(text="Mu and Rotation, not", icon='BLANK1')
+            note.label(text="its Style or Sigma", icon='BLANK1')
         row = layout.row()
         row.template_list("GAUSS_UL_styles", "", settings, "styles", settings, "active_style_index", rows=3)
         buttons = row.column(align=True)
