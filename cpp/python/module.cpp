@@ -18,6 +18,7 @@
 #include "gauss/parallel.h"
 #include "gauss/presets.h"
 #include "gauss/settings.h"
+#include "iteration_bindings.h"
 #include "numpy_arrays.h"
 
 namespace py = pybind11;
@@ -50,7 +51,7 @@ Style make_style(std::string name, StyleParams params) {
 class Solver {
  public:
   Solver(const py::object& V, const py::object& F, const py::object& pinned, const py::object& pin_positions,
-         double lam, int admm_iterations) {
+         double lam, int admm_iterations, double tolerance) {
     std::vector<double> v = read_matrix<double>(V, 3, "V", false);
     std::vector<int64_t> f = read_matrix<int64_t>(F, 3, "F", true);
     std::vector<int64_t> pins;
@@ -60,6 +61,7 @@ class Solver {
                                             static_cast<int>(f.size() / 3), pins,
                                             targets.empty() ? nullptr : targets.data(), lam);
     solver_->set_admm_iterations(admm_iterations);
+    solver_->set_tolerance(tolerance);
     styles_.push_back(make_style(settings::default_preset, gauss::default_style()));
   }
 
@@ -349,15 +351,17 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
 Gauss stylization of one triangle mesh. The constructor does the set-up (normalization, cotangent
 weights, topology, sparse Cholesky factorization); step() runs Algorithm 1 of the paper.
 
-Solver(V, F, pinned=None, pin_positions=None, lam, admm_iterations)  (defaults and ranges: DEFAULTS, LIMITS)
+Solver(V, F, pinned=None, pin_positions=None, lam, admm_iterations, tolerance)  (defaults, ranges: DEFAULTS, LIMITS)
   V: (#V, 3) float32/float64 coordinates.  F: (#F, 3) int32/int64 triangle indices.
   pinned: (#P,) vertex indices that keep their position; pin_positions: (#P, 3) targets
   (default: their rest positions).  lam: lambda.  admm_iterations: ADMM rounds per step.
+  tolerance: the reldV below which `converged` is True.
 By default one style, DEFAULTS['preset'] with the default sigma and mu, applies to every face.)doc")
-      .def(py::init<const py::object&, const py::object&, const py::object&, const py::object&, double, int>(),
+      .def(py::init<const py::object&, const py::object&, const py::object&, const py::object&, double, int, double>(),
            py::arg("V"), py::arg("F"), py::arg("pinned") = py::none(), py::arg("pin_positions") = py::none(),
            py::arg("lam") = settings::lambda.default_value,
-           py::arg("admm_iterations") = static_cast<int>(settings::admm_iterations.default_value))
+           py::arg("admm_iterations") = static_cast<int>(settings::admm_iterations.default_value),
+           py::arg("tolerance") = settings::tolerance.default_value)
       .def("set_styles", &Solver::set_styles, py::arg("styles"),
            "Replaces the style list (takes effect at the next step, no re-factorization).")
       .def("set_style", &Solver::set_style, py::arg("index"), py::arg("style"), "Replaces one style.")
@@ -402,4 +406,6 @@ By default one style, DEFAULTS['preset'] with the default sigma and mu, applies 
              d["faces"] = t.faces; d["rotations"] = t.rotations; d["admm"] = t.admm; d["rhs"] = t.rhs; d["solve"] = t.solve; d["threads"] = t.threads;
              return d;
            }, "Milliseconds per phase of the last step.");
+  py::class_<Solver> solver_class = py::reinterpret_borrow<py::class_<Solver>>(m.attr("Solver"));
+  gauss_python::bind_iteration(solver_class);
 }

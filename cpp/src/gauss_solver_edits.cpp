@@ -22,6 +22,7 @@ void GaussSolver::set_styles(std::vector<PreferenceFunction> styles) {
       throw std::invalid_argument(msg.str());
     }
   styles_ = std::move(styles);
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_style(int index, PreferenceFunction style) {
@@ -31,6 +32,7 @@ void GaussSolver::set_style(int index, PreferenceFunction style) {
     throw std::invalid_argument(msg.str());
   }
   styles_[index] = std::move(style);
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_face_styles(const int64_t* style_of_input_face, int count) {
@@ -48,17 +50,20 @@ void GaussSolver::set_face_styles(const int64_t* style_of_input_face, int count)
     }
   for (size_t f = 0; f < topo_.faces.size(); ++f)
     face_style_[f] = static_cast<int>(style_of_input_face[topo_.input_face[f]]);
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_lambda(double lambda) {
   settings::lambda.check(lambda);
   // Eq. 27: lambda only scales the right-hand side, so the factor stays valid.
   lambda_ = lambda;
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_admm_iterations(int n) {
   settings::admm_iterations.check(n);
   admm_iterations_ = n;
+  iteration_.invalidate();
 }
 
 std::vector<Vector3d> GaussSolver::checked_pin_targets(const std::vector<int64_t>& pinned,
@@ -110,6 +115,7 @@ void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin
   pinned_input_ = pinned;
   pin_targets_ = std::move(targets);
   laplacian_.place_pins(X_);
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_pin_positions(const double* pin_positions, int count) {
@@ -122,6 +128,7 @@ void GaussSolver::set_pin_positions(const double* pin_positions, int count) {
   laplacian_.set_pin_positions(to_solver_frame(targets));
   pin_targets_ = std::move(targets);
   laplacian_.place_pins(X_);
+  iteration_.invalidate();
 }
 
 }  // namespace gauss

@@ -4,7 +4,7 @@ The PropertyGroups (properties.py), the JSON round-trip and the settings writer
 (settings_io.py), the validation before a run (validation.py), what a live run
 does when a setting changes (session.py) and the panel rows (ui.py) are all
 derived from these tables. Defaults and hard ranges of what the solver owns
-(lam, sigma, mu, axis_contribution, admm_iterations) and the preset registry
+(lam, sigma, mu, axis_contribution, admm_iterations, tolerance) and the preset registry
 come from the solver (native.facts()), never from here.
 
 A new setting is one line in its table (kinds: fields.py), plus its use in the
@@ -87,6 +87,9 @@ OBJECT = (
           soft=(0.0, 20.0), live=Live.SETTER, panel=Panel.SOLVER),
     Int("admm_iterations", "ADMM Iterations", "Inner iterations per solver step",
         live=Live.SETTER, panel=Panel.SOLVER),
+    Float("tolerance", "Tolerance", "A run has converged when a step moves the mesh by less than this "
+          "fraction of how far it has moved from its original shape",
+          soft=(1e-4, 0.1), panel=Panel.SOLVER),
     Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode",
         default=100, hard=(0, 100000), panel=Panel.SOLVER),
     Choice("output", "Output", "Where the stylized coordinates go",

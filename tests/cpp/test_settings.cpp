@@ -36,6 +36,7 @@ bool apply_and_step(const Setting& s, double value) {
   GaussSolver solver(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), {}, nullptr, lambda);
   if (&s == &settings::lambda) solver.set_lambda(value);
   if (&s == &settings::admm_iterations) solver.set_admm_iterations(static_cast<int>(value));
+  if (&s == &settings::tolerance) solver.set_tolerance(value);
   solver.set_styles({g});
   solver.step();
   std::vector<double> out(m.V.size());

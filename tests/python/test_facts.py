@@ -10,7 +10,7 @@ import gauss_core
 from conftest import BUILD
 from meshes import icosphere
 
-SETTINGS = ("lam", "sigma", "mu", "axis_contribution", "admm_iterations")
+SETTINGS = ("lam", "sigma", "mu", "axis_contribution", "admm_iterations", "tolerance")
 INTEGER = {"admm_iterations"}
 LABEL = {"lam": "lambda", "admm_iterations": "ADMM iterations"}  # how error messages call them
 V, F = icosphere(2)
@@ -49,6 +49,7 @@ def test_a_new_solver_and_keyword_defaults_use_the_defaults():
     s = gauss_core.Solver(V, F)
     assert s.lam == gauss_core.DEFAULTS["lam"]
     assert s.admm_iterations == gauss_core.DEFAULTS["admm_iterations"]
+    assert s.tolerance == gauss_core.DEFAULTS["tolerance"]
     (style,) = s.styles
     assert style.name == gauss_core.DEFAULTS["preset"]
     for made in (style, gauss_core.Style.preset("cone"), gauss_core.Style([[0, 0, 1]])):
@@ -58,7 +59,7 @@ def test_a_new_solver_and_keyword_defaults_use_the_defaults():
 
 def _apply(name, value):
     """Uses one setting where the module takes it, steps once, returns the vertices."""
-    if name in ("lam", "admm_iterations"):
+    if name in ("lam", "admm_iterations", "tolerance"):
         s = gauss_core.Solver(V, F, **{name: value})
         setattr(s, name, value)
     else:

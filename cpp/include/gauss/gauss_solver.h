@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "gauss/constrained_laplacian.h"
+#include "gauss/fixed_point_iteration.h"
 #include "gauss/mesh_topology.h"
 #include "gauss/preference_function.h"
 #include "gauss/settings.h"
@@ -70,8 +71,20 @@ class GaussSolver {
 
   // One iteration of Algorithm 1.
   void step();
+  // Steps until a step's reldV is below `tolerance` (settings::tolerance), at most max_steps (>= 0)
+  // times; returns the number of steps taken (0 if converged() already holds for this tolerance).
+  // Sets tolerance() to `tolerance`. Throws std::invalid_argument (before stepping) on a bad argument.
+  int step_until(double tolerance, int max_steps);
   // Current vertices := rest vertices (pins at their targets); step count := 0.
   void reset();
+
+  // --- Convergence (fixed_point_iteration.h). Every edit above (styles, lambda, ADMM rounds, pins,
+  // their targets, reset) changes the map or the iterate, so it makes last_reldv() +infinity. ---
+  double last_reldv() const { return iteration_.last_reldv(); }  // +infinity before the first step
+  // The tolerance converged() compares with: settings::tolerance (checked), set here or by step_until().
+  void set_tolerance(double tolerance);
+  double tolerance() const { return tolerance_; }
+  bool converged() const { return last_reldv() < tolerance_; }
 
   // --- Read-outs. ---
   void copy_vertices(double* out) const;  // #V by 3, caller's frame
@@ -87,6 +100,8 @@ class GaussSolver {
 
  private:
   void compute_rest_quantities();
+  // One local-global step on X_ (Algorithm 1: local step, then the global solve), timing its phases.
+  void local_global_step();
   void face_pass();
   void fit_rotations();  // rotation_ from face_cov_
   void admm_round(bool first_round);
@@ -140,6 +155,8 @@ class GaussSolver {
   StepTimings timings_;
   ThreadTuner tuner_;
   int step_count_ = 0;
+  FixedPointIteration iteration_;  // reldV (and what else wraps a step)
+  double tolerance_ = settings::tolerance.default_value;
 };
 
 }  // namespace gauss

@@ -46,8 +46,13 @@ inline constexpr Setting mu{"mu", "mu", 1.0, 0.0, 1e3, false};
 inline constexpr Setting axis_contribution{"axis_contribution", "axis_contribution", 0.5, 0.0, 1.0, false};
 // ADMM rounds per step (Algorithm 1's inner loop).
 inline constexpr Setting admm_iterations{"admm_iterations", "ADMM iterations", 1, 1, 100, true};
+// A run has converged when a step moved the mesh by less than this relative change, reldV
+// (fixed_point_iteration.h): the largest coordinate change of the step over the largest coordinate
+// displacement from the rest mesh (the stopping rule of the reference cubic stylization code).
+// Below 1e-5 the rounding floor of reldV is too close (a still mesh reads ~4e-7).
+inline constexpr Setting tolerance{"tolerance", "tolerance", 1e-3, 1e-5, 1.0, false};
 
-inline constexpr const Setting* all[] = {&lambda, &sigma, &mu, &axis_contribution, &admm_iterations};
+inline constexpr const Setting* all[] = {&lambda, &sigma, &mu, &axis_contribution, &admm_iterations, &tolerance};
 
 // Sizes. A style's preferred normals: set-up is O(K log K) up to this many (normal_field.h); bigger
 // sets are refused with a message that points to gauss_core.merge_directions. Rings: their weights
