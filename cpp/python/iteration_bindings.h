@@ -1,11 +1,16 @@
 #pragma once
-// gauss_core.Solver's run control: stepping until converged and the read-outs that say how far a run is.
+// gauss_core.Solver's run control: stepping until converged, the read-outs that say how far a run is,
+// and setting the current vertices (a warm start).
 // Kept apart from module.cpp (the other bindings), which adds these to its Solver class with
 // bind_iteration(). SolverWrapper: module.cpp's Solver (core(): the GaussSolver, mutex(): held around
 // every use of it).
 #include <pybind11/pybind11.h>
 
 #include <mutex>
+#include <sstream>
+#include <vector>
+
+#include "numpy_arrays.h"
 
 namespace gauss_python {
 
@@ -37,6 +42,23 @@ void bind_iteration(pybind11::class_<SolverWrapper>& cls) {
         return s.core().converged();
       }, "last_reldv < tolerance: the last step moved the mesh by less than the tolerance, and nothing\n"
          "changed since.");
+  cls.def("set_vertices", [](SolverWrapper& s, const py::object& vertices) {
+        const int n = s.core().num_vertices();
+        py::array arr = as_array(vertices, "vertices");
+        if (arr.ndim() == 2 && arr.shape(0) != n) {  // before copying a huge array
+          std::ostringstream msg;
+          msg << "vertices must have one row per vertex (" << n << "), got " << arr.shape(0);
+          throw py::value_error(msg.str());
+        }
+        std::vector<double> v = read_matrix<double>(arr, 3, "vertices", false);
+        std::lock_guard<std::mutex> lock(s.mutex());
+        s.core().set_vertices(v.data(), static_cast<int>(v.size() / 3));
+      }, py::arg("vertices"),
+      "(#V, 3) new current vertices: a warm start for the next step (e.g. the previous frame of a bake).\n"
+      "The rest shape and the factorization stay; pins stay at their targets, vertices no face uses at\n"
+      "their input positions; step_count is kept. What earlier steps carried over is dropped, so the\n"
+      "steps that follow depend on these vertices alone. NaN, infinite or far-off coordinates are\n"
+      "refused (ValueError) without effect.");
 }
 
 }  // namespace gauss_python

@@ -1,5 +1,6 @@
-// GaussSolver between steps: styles, parameters and pins. Everything here takes effect at the next
-// step; only set_pins() re-factors (see constrained_laplacian.h).
+// GaussSolver between steps: styles, parameters, pins and the current vertices. Everything here takes
+// effect at the next step; only set_pins() re-factors (see constrained_laplacian.h).
+#include <algorithm>
 #include <cstdint>
 #include <sstream>
 #include <stdexcept>
@@ -128,6 +129,37 @@ void GaussSolver::set_pin_positions(const double* pin_positions, int count) {
   laplacian_.set_pin_positions(to_solver_frame(targets));
   pin_targets_ = std::move(targets);
   laplacian_.place_pins(X_);
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_vertices(const double* V, int count) {
+  const int nV = topo_.num_vertices;
+  if (count != nV || V == nullptr) {
+    std::ostringstream msg;
+    msg << "vertices must have one row per vertex (" << nV << "), got " << count;
+    throw std::invalid_argument(msg.str());
+  }
+  for (int old = 0; old < nV; ++old) {  // all checks first: a refused call changes nothing
+    const Vector3d p(V[3 * old], V[3 * old + 1], V[3 * old + 2]);
+    if (!p.allFinite()) {
+      std::ostringstream msg;
+      msg << "vertex " << old << " has a NaN or infinite coordinate";
+      throw std::invalid_argument(msg.str());
+    }
+    if (topo_.component[new_of_old_[old]] >= 0 &&
+        !((p - center_).cwiseAbs().maxCoeff() <= settings::max_pin_distance * scale_)) {
+      std::ostringstream msg;
+      msg << "vertex " << old << " is too far from the mesh (more than " << settings::max_pin_distance
+          << " times its size)";
+      throw std::invalid_argument(msg.str());
+    }
+  }
+  for (int old = 0; old < nV; ++old) {
+    const int v = new_of_old_[old];
+    if (topo_.component[v] >= 0) X_[v] = (Vector3d(V[3 * old], V[3 * old + 1], V[3 * old + 2]) - center_) / scale_;
+  }
+  laplacian_.place_pins(X_);
+  std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
   iteration_.invalidate();
 }
 

@@ -101,3 +101,39 @@ def test_step_until_releases_the_gil():
     t.join()
     assert timing["steps"] == 20 and timing["time"] > 0.02
     assert longest_pause < 0.5 * timing["time"], (longest_pause, timing["time"])
+
+
+def test_set_vertices_is_a_warm_start_that_keeps_rest_shape_and_pins():
+    V, F = icosphere(3)
+    s = gauss_core.Solver(V, F, pinned=[0], pin_positions=[V[0] + [0.0, 0.0, 0.1]])
+    cold = s.step_until(1e-3, 2000)
+    result = s.vertices
+    warm = gauss_core.Solver(V, F, pinned=[0], pin_positions=[V[0] + [0.0, 0.0, 0.1]])
+    moved = result.astype(np.float32)  # Blender's dtype
+    moved[0] += 0.5  # a pin: stays at its target whatever is given
+    warm.set_vertices(moved)
+    np.testing.assert_array_equal(warm.vertices[0], V[0] + [0.0, 0.0, 0.1])
+    np.testing.assert_allclose(warm.vertices[1:], moved[1:], atol=1e-6)
+    assert warm.last_reldv == math.inf and warm.factorization_count == 1
+    assert warm.step_until(1e-3, 2000) < cold / 4
+    warm.reset()  # back to the rest shape, not to the warm start
+    np.testing.assert_allclose(warm.vertices[1:], V[1:], atol=1e-12)
+    assert warm.step_count == 0
+
+
+@pytest.mark.parametrize("make, error, message", [
+    (lambda V: V[:-1], ValueError, "one row per vertex"),
+    (lambda V: V[:, :2], ValueError, "shape"),
+    (lambda V: np.where(np.arange(len(V))[:, None] == 4, np.nan, V), ValueError, "vertex 4 has a NaN"),
+    (lambda V: np.where(np.arange(len(V))[:, None] == 4, 1e30, V), ValueError, "vertex 4 is too far"),
+    (lambda V: V.astype(str), TypeError, "floating-point"),
+    (lambda V: "vertices", TypeError, ""),
+])
+def test_set_vertices_refuses_bad_arrays_without_effect(make, error, message):
+    V, F = icosphere(2)
+    s = gauss_core.Solver(V, F)
+    s.step(3)
+    before = s.vertices
+    with pytest.raises(error, match=message):
+        s.set_vertices(make(V))
+    np.testing.assert_array_equal(s.vertices, before)

@@ -77,9 +77,18 @@ class GaussSolver {
   int step_until(double tolerance, int max_steps);
   // Current vertices := rest vertices (pins at their targets); step count := 0.
   void reset();
+  // Current vertices := V (count by 3, caller's frame and numbering, count == #V): a warm start for
+  // the next step, e.g. the previous frame's result in an animation bake. The rest shape, styles and
+  // factorization stay; pins stay at their targets and vertices no face uses at their input
+  // positions; the step count is kept. What the iteration carried over from earlier steps (the
+  // rotation fit's warm start) is reset as reset() does, so the steps that follow depend on V alone.
+  // Throws std::invalid_argument, changing nothing, unless every coordinate is finite and every vertex
+  // that faces use lies within settings::max_pin_distance times the mesh's size of it.
+  void set_vertices(const double* V, int count);
 
   // --- Convergence (fixed_point_iteration.h). Every edit above (styles, lambda, ADMM rounds, pins,
-  // their targets, reset) changes the map or the iterate, so it makes last_reldv() +infinity. ---
+  // their targets, reset, set_vertices) changes the map or the iterate, so it makes last_reldv()
+  // +infinity. ---
   double last_reldv() const { return iteration_.last_reldv(); }  // +infinity before the first step
   // The tolerance converged() compares with: settings::tolerance (checked), set here or by step_until().
   void set_tolerance(double tolerance);

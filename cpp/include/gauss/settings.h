@@ -67,8 +67,8 @@ inline constexpr const char* default_preset = "cube";
 // Coordinates of vertices that faces use: within +-max_coordinate (near 1e308 the output
 // x * scale + center overflowed to infinity).
 inline constexpr double max_coordinate = 1e200;
-// Pin targets: within max_pin_distance times the mesh's size of its centre (beyond ~1e150 sizes,
-// squared edge lengths overflow and E_ARAP turns infinite).
+// Pin targets and the vertices set_vertices() takes: within max_pin_distance times the mesh's size of
+// its centre (beyond ~1e150 sizes, squared edge lengths overflow and E_ARAP turns infinite).
 inline constexpr double max_pin_distance = 1e12;
 
 }  // namespace settings
