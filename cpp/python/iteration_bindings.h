@@ -1,6 +1,6 @@
 #pragma once
 // gauss_core.Solver's run control: stepping until converged, the read-outs that say how far a run is,
-// and setting the current vertices (a warm start).
+// what a step does besides Algorithm 1 (keep_volume) and setting the current vertices (a warm start).
 // Kept apart from module.cpp (the other bindings), which adds these to its Solver class with
 // bind_iteration(). SolverWrapper: module.cpp's Solver (core(): the GaussSolver, mutex(): held around
 // every use of it).
@@ -42,6 +42,12 @@ void bind_iteration(pybind11::class_<SolverWrapper>& cls) {
         return s.core().converged();
       }, "last_reldv < tolerance: the last step moved the mesh by less than the tolerance, and nothing\n"
          "changed since.");
+  cls.def_property("keep_volume", [](SolverWrapper& s) { return s.core().keep_volume(); },
+      [](SolverWrapper& s, bool on) {
+        std::lock_guard<std::mutex> lock(s.mutex());
+        s.core().set_keep_volume(on);
+      }, "After each step, scale every component without a pin uniformly about its centroid back to its\n"
+         "rest volume (closed components) or surface area (open ones). Default: DEFAULTS['keep_volume'].");
   cls.def("set_vertices", [](SolverWrapper& s, const py::object& vertices) {
         const int n = s.core().num_vertices();
         py::array arr = as_array(vertices, "vertices");

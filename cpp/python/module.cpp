@@ -51,7 +51,7 @@ Style make_style(std::string name, StyleParams params) {
 class Solver {
  public:
   Solver(const py::object& V, const py::object& F, const py::object& pinned, const py::object& pin_positions,
-         double lam, int admm_iterations, double tolerance) {
+         double lam, int admm_iterations, double tolerance, bool keep_volume) {
     std::vector<double> v = read_matrix<double>(V, 3, "V", false);
     std::vector<int64_t> f = read_matrix<int64_t>(F, 3, "F", true);
     std::vector<int64_t> pins;
@@ -62,6 +62,7 @@ class Solver {
                                             targets.empty() ? nullptr : targets.data(), lam);
     solver_->set_admm_iterations(admm_iterations);
     solver_->set_tolerance(tolerance);
+    solver_->set_keep_volume(keep_volume);
     styles_.push_back(make_style(settings::default_preset, gauss::default_style()));
   }
 
@@ -188,6 +189,7 @@ PYBIND11_MODULE(gauss_core, m) {
       limits[setting->name] = py::make_tuple(setting->min, setting->max);
     }
   }
+  for (const gauss::Option* option : settings::options) defaults[option->name] = option->default_value;
   defaults["preset"] = settings::default_preset;
   m.attr("DEFAULTS") = defaults;
   m.attr("LIMITS") = limits;
@@ -351,17 +353,20 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
 Gauss stylization of one triangle mesh. The constructor does the set-up (normalization, cotangent
 weights, topology, sparse Cholesky factorization); step() runs Algorithm 1 of the paper.
 
-Solver(V, F, pinned=None, pin_positions=None, lam, admm_iterations, tolerance)  (defaults, ranges: DEFAULTS, LIMITS)
+Solver(V, F, pinned=None, pin_positions=None, lam, admm_iterations, tolerance, keep_volume)
+  (defaults and ranges: DEFAULTS, LIMITS)
   V: (#V, 3) float32/float64 coordinates.  F: (#F, 3) int32/int64 triangle indices.
   pinned: (#P,) vertex indices that keep their position; pin_positions: (#P, 3) targets
   (default: their rest positions).  lam: lambda.  admm_iterations: ADMM rounds per step.
-  tolerance: the reldV below which `converged` is True.
+  tolerance: the reldV below which `converged` is True.  keep_volume: see the property.
 By default one style, DEFAULTS['preset'] with the default sigma and mu, applies to every face.)doc")
-      .def(py::init<const py::object&, const py::object&, const py::object&, const py::object&, double, int, double>(),
+      .def(py::init<const py::object&, const py::object&, const py::object&, const py::object&, double, int, double,
+                    bool>(),
            py::arg("V"), py::arg("F"), py::arg("pinned") = py::none(), py::arg("pin_positions") = py::none(),
            py::arg("lam") = settings::lambda.default_value,
            py::arg("admm_iterations") = static_cast<int>(settings::admm_iterations.default_value),
-           py::arg("tolerance") = settings::tolerance.default_value)
+           py::arg("tolerance") = settings::tolerance.default_value,
+           py::arg("keep_volume") = settings::keep_volume.default_value)
       .def("set_styles", &Solver::set_styles, py::arg("styles"),
            "Replaces the style list (takes effect at the next step, no re-factorization).")
       .def("set_style", &Solver::set_style, py::arg("index"), py::arg("style"), "Replaces one style.")

@@ -276,7 +276,10 @@ void GaussSolver::step() {
   const parallel::ScopedThreads scoped(threads);
   const auto start = Clock::now();
   // The normalized frame's longest bounding-box side is 1.
-  iteration_.advance(X_, rest_, 1.0, [this] { local_global_step(); });
+  iteration_.advance(X_, rest_, 1.0, [this] {
+    local_global_step();
+    if (keep_volume_) volume_.restore(topo_, X_);
+  });
   ++step_count_;
   tuner_.record(threads, ms_since(start));
   timings_.threads = threads;

@@ -67,6 +67,11 @@ void GaussSolver::set_admm_iterations(int n) {
   iteration_.invalidate();
 }
 
+void GaussSolver::set_keep_volume(bool on) {
+  keep_volume_ = on;
+  iteration_.invalidate();
+}
+
 std::vector<Vector3d> GaussSolver::checked_pin_targets(const std::vector<int64_t>& pinned,
                                                        const double* positions) const {
   const int nV = topo_.num_vertices;
@@ -113,6 +118,7 @@ void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin
   for (size_t i = 0; i < pinned.size(); ++i) internal[i] = new_of_old_[pinned[i]];
   laplacian_ = ConstrainedLaplacian(topo_, edge_weight_, rest_, internal, to_solver_frame(targets));
   ++factorization_count_;
+  volume_ = VolumeKeeper(topo_, rest_, internal);
   pinned_input_ = pinned;
   pin_targets_ = std::move(targets);
   laplacian_.place_pins(X_);

@@ -1,4 +1,4 @@
-// Prints the solver's settings table and preset registry (settings.h, presets.h) as JSON: the same
+// Prints the solver's settings table, its options and the preset registry (settings.h, presets.h) as JSON: the same
 // facts gauss_core exports as DEFAULTS, LIMITS and PRESETS. The build writes this to the staged
 // add-on's core_facts.json, which the add-on reads when the native module cannot be loaded (another
 // Python, a missing runtime): its properties then still register with the solver's defaults and ranges.
@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   std::printf("{\n  \"DEFAULTS\": {");
   for (const gauss::Setting* s : settings::all)
     std::printf("\"%s\": %s, ", s->name, number(s->default_value, s->integer).c_str());
+  for (const gauss::Option* o : settings::options) std::printf("\"%s\": %s, ", o->name, o->default_value ? "true" : "false");
   std::printf("\"preset\": \"%s\"},\n  \"LIMITS\": {", settings::default_preset);
   bool first = true;
   for (const gauss::Setting* s : settings::all) {

@@ -12,12 +12,13 @@ from meshes import icosphere
 
 SETTINGS = ("lam", "sigma", "mu", "axis_contribution", "admm_iterations", "tolerance")
 INTEGER = {"admm_iterations"}
+OPTIONS = ("keep_volume",)  # on/off: a bool default, no limits
 LABEL = {"lam": "lambda", "admm_iterations": "ADMM iterations"}  # how error messages call them
 V, F = icosphere(2)
 
 
 def test_defaults_and_limits_have_the_documented_keys_and_types():
-    assert set(gauss_core.DEFAULTS) == set(SETTINGS) | {"preset"}
+    assert set(gauss_core.DEFAULTS) == set(SETTINGS) | set(OPTIONS) | {"preset"}
     assert set(gauss_core.LIMITS) == set(SETTINGS)
     for name in SETTINGS:
         lo, hi = gauss_core.LIMITS[name]
@@ -25,6 +26,8 @@ def test_defaults_and_limits_have_the_documented_keys_and_types():
         assert type(gauss_core.DEFAULTS[name]) is kind and type(lo) is kind and type(hi) is kind, name
         assert lo <= gauss_core.DEFAULTS[name] <= hi, name
     assert gauss_core.DEFAULTS["preset"] in gauss_core.PRESETS
+    for name in OPTIONS:
+        assert type(gauss_core.DEFAULTS[name]) is bool, name
 
 
 def test_the_preset_registry_order_is_unchanged():
@@ -50,6 +53,8 @@ def test_a_new_solver_and_keyword_defaults_use_the_defaults():
     assert s.lam == gauss_core.DEFAULTS["lam"]
     assert s.admm_iterations == gauss_core.DEFAULTS["admm_iterations"]
     assert s.tolerance == gauss_core.DEFAULTS["tolerance"]
+    for name in OPTIONS:
+        assert getattr(s, name) is gauss_core.DEFAULTS[name], name
     (style,) = s.styles
     assert style.name == gauss_core.DEFAULTS["preset"]
     for made in (style, gauss_core.Style.preset("cone"), gauss_core.Style([[0, 0, 1]])):

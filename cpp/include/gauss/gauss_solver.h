@@ -25,6 +25,7 @@
 #include "gauss/preference_function.h"
 #include "gauss/settings.h"
 #include "gauss/thread_tuner.h"
+#include "gauss/volume_keeper.h"
 
 namespace gauss {
 
@@ -68,6 +69,10 @@ class GaussSolver {
   const std::vector<Eigen::Vector3d>& pin_positions() const { return pin_targets_; }  // #P by 3, caller's frame
   void set_admm_iterations(int n);
   int admm_iterations() const { return admm_iterations_; }
+  // Keep Volume (settings::keep_volume, volume_keeper.h): after each step, components without a pin
+  // are scaled back to their rest volume (closed) or area (open).
+  void set_keep_volume(bool on);
+  bool keep_volume() const { return keep_volume_; }
 
   // One iteration of Algorithm 1.
   void step();
@@ -86,9 +91,9 @@ class GaussSolver {
   // that faces use lies within settings::max_pin_distance times the mesh's size of it.
   void set_vertices(const double* V, int count);
 
-  // --- Convergence (fixed_point_iteration.h). Every edit above (styles, lambda, ADMM rounds, pins,
-  // their targets, reset, set_vertices) changes the map or the iterate, so it makes last_reldv()
-  // +infinity. ---
+  // --- Convergence (fixed_point_iteration.h). Every edit above (styles, lambda, ADMM rounds, keep
+  // volume, pins, their targets, reset, set_vertices) changes the map or the iterate, so it makes
+  // last_reldv() +infinity. ---
   double last_reldv() const { return iteration_.last_reldv(); }  // +infinity before the first step
   // The tolerance converged() compares with: settings::tolerance (checked), set here or by step_until().
   void set_tolerance(double tolerance);
@@ -151,6 +156,8 @@ class GaussSolver {
   std::vector<Eigen::Vector3d> pin_targets_;         // caller's frame (returned verbatim)
   ConstrainedLaplacian laplacian_;                   // internal numbering, normalized frame
   int factorization_count_ = 0;
+  VolumeKeeper volume_;                              // rest sizes of the components without a pin
+  bool keep_volume_ = settings::keep_volume.default_value;
 
   // Per-step buffers (allocated once).
   std::vector<Eigen::Vector3d> normal_star_;                 // #F

@@ -34,6 +34,12 @@ struct Setting {
   }
 };
 
+// An on/off option of the solver: exported in gauss_core.DEFAULTS (a bool; it has no limits).
+struct Option {
+  const char* name;  // the Python name (Solver keyword and property)
+  bool default_value;
+};
+
 namespace settings {
 
 // lambda of Eq. 27: how strongly edges follow the preferred normals.
@@ -53,6 +59,12 @@ inline constexpr Setting admm_iterations{"admm_iterations", "ADMM iterations", 1
 inline constexpr Setting tolerance{"tolerance", "tolerance", 1e-3, 1e-5, 1.0, false};
 
 inline constexpr const Setting* all[] = {&lambda, &sigma, &mu, &axis_contribution, &admm_iterations, &tolerance};
+
+// After each step, scale every component back to its rest volume (closed) or area (open): issue 10's
+// Keep Volume (volume_keeper.h).
+inline constexpr Option keep_volume{"keep_volume", false};
+
+inline constexpr const Option* options[] = {&keep_volume};
 
 // Sizes. A style's preferred normals: set-up is O(K log K) up to this many (normal_field.h); bigger
 // sets are refused with a message that points to gauss_core.merge_directions. Rings: their weights
