@@ -4,8 +4,8 @@ The PropertyGroups (properties.py), the JSON round-trip and the settings writer
 (settings_io.py), the validation before a run (validation.py), what a live run
 does when a setting changes (session.py) and the panel rows (ui.py) are all
 derived from these tables. Defaults and hard ranges of what the solver owns
-(lam, sigma, mu, axis_contribution, admm_iterations, cubic_lambda, tolerance), the
-preset registry and the methods come from the solver (native.facts()), never from here.
+(lam, sigma, mu, axis_contribution, admm_iterations, cubic_lambda, tolerance; the default of
+keep_volume), the preset registry and the methods come from the solver (native.facts()), never from here.
 
 A new setting is one line in its table (kinds: fields.py), plus its use in the
 solver call for slot fields (styles.make_style); see python_addon/README.md.
@@ -119,6 +119,9 @@ OBJECT = (
           soft=(1e-4, 0.1), panel=Panel.SOLVER),
     Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode",
         default=100, hard=(0, 100000), panel=Panel.SOLVER),
+    Bool("keep_volume", "Keep Volume", "After each step scale every closed part of the mesh about its centre "
+         "back to its original volume (open parts: to their original area; parts with pinned vertices are "
+         "left alone), so the shape does not shrink", live=Live.SETTER, panel=Panel.SOLVER),
     Bool("use_modifiers", "Use Modifiers", "Stylize the mesh as it is shown: modifiers, armature and shape "
          "keys at the current frame (otherwise the base mesh, under the modifiers)", default=False,
          panel=Panel.MAIN),

@@ -100,6 +100,7 @@ LIVE_CHANGES = {
     ("object", "method"): ({}, {}, 'CUBIC'),
     ("object", "cubic_lambda"): ({}, dict(method='CUBIC'), 0.8),
     ("object", "admm_iterations"): ({}, {}, 3),
+    ("object", "keep_volume"): ({}, {}, True),
 }
 
 
