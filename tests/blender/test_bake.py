@@ -52,6 +52,56 @@ def test_cold_bake_frames_equal_stylizing_each_frame_alone(addon, tmp_path):
     assert np.abs(cache.frames[9] - cache.frames[0]).max() > 0.5
 
 
+def _animation_at(addon, obj, frame):
+    """The animated (armature-deformed) mesh at ``frame``, the object's bake switched off."""
+    modifier = addon.cache_modifier.find(obj)
+    if modifier is not None:
+        modifier.show_viewport = False
+    shown = rig.shown_at(obj, frame)
+    if modifier is not None:
+        modifier.show_viewport = True
+    return shown
+
+
+def _offsets(frames, rests):
+    """Mean distance of each frame's result from its own rest shape: how stylized it is."""
+    return np.array([np.linalg.norm(y - r, axis=1).mean() for y, r in zip(frames, rests)])
+
+
+def test_warm_bake_continues_each_frame_from_the_previous_result(addon, tmp_path):
+    # What bake.py defines: frame 1 = Script Steps from its rest shape (Stylize on frame 1 alone);
+    # frame f > 1 starts at X_f = Y_{f-1} + (R_f - R_{f-1}) and runs Bake Steps. Replayed here with
+    # gauss_core directly (the default style and settings, which the bake's default slot has).
+    obj = rig.bent_capsule()
+    settings = obj.gauss_stylization
+    warm, cold = tmp_path / "warm.pc2", tmp_path / "cold.pc2"
+    assert _bake_animation(warm, 1, 10, warm_start=True) == {'FINISHED'}
+    frames = addon.pc2.read(str(warm)).frames
+    assert np.array_equal(frames[0], _stylized_alone(obj, 1, settings.iterations))
+    core, triangles = addon.native.core(), helpers.triangles(obj)[0]
+    rests = [_animation_at(addon, obj, frame) for frame in range(1, 11)]
+    result = None
+    for frame in range(1, 6):
+        rest = rests[frame - 1]
+        solver = core.Solver(rest, triangles, lam=settings.lam, admm_iterations=settings.admm_iterations)
+        if result is None:
+            solver.step(settings.iterations)
+        else:
+            solver.set_vertices(result + (rest - rests[frame - 2]))
+            solver.step(settings.bake_steps)
+        result = np.empty_like(rest)
+        solver.vertices_into(result)
+    assert np.array_equal(frames[4], result)
+    # The style carries over: every warm frame is about as stylized as the first, while cold frames
+    # (Bake Steps from their rest shape each) are much less, Bake Steps being fewer than Script Steps.
+    assert _bake_animation(cold, 1, 10, warm_start=False) == {'FINISHED'}
+    warm_offsets = _offsets(frames, rests)
+    cold_offsets = _offsets(addon.pc2.read(str(cold)).frames, rests)
+    print("mean offset from the rest shape, warm:", np.round(warm_offsets, 4), "cold:", np.round(cold_offsets, 4))
+    assert np.all(warm_offsets[1:] > 0.8 * warm_offsets[0])
+    assert np.all(cold_offsets[1:] < 0.8 * warm_offsets[1:])
+
+
 def test_playback_shows_the_baked_frames_exactly(addon, tmp_path):
     obj = rig.bent_capsule()
     path = tmp_path / "capsule.pc2"
