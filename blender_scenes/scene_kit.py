@@ -109,7 +109,7 @@ def suzanne(name="Suzanne", subdivisions=2):
 # (after the importer's Y-up -> Z-up conversion) and turn them three-quarters to the camera.
 SPOT = ("small/spot_triangulated_2930.obj", (('X', 90), ('Z', 120)))  # public domain (Keenan Crane)
 BUNNY = ("bunny/bunny_odedstein_3301.obj", (('X', 90), ('Z', 20)))   # Stanford 3D Scanning Repository
-BUNNY_WATERTIGHT = ("bunny/bunny_watertight_34834.obj", (('X', 90), ('Z', 20)))  # bun_zipper, holes filled
+BUNNY_WATERTIGHT = ("bunny/bunny_watertight_34834.obj", (('Z', 20),))  # bun_zipper, holes filled; stored Z-up
 SPOT_HEAD = np.array([-math.sin(math.radians(120)), math.cos(math.radians(120)), 0.0])  # where Spot looks
 
 
