@@ -53,6 +53,12 @@ def _not_custom(slot):
     return slot.preset != CUSTOM
 
 
+def _has_rings(slot):
+    """Does the slot's preset have rings (Cylinder, Cone, ...: whatever the solver says)?"""
+    rings = native.ring_presets()
+    return slot.preset != CUSTOM and (rings is None or slot.preset.lower() in rings)
+
+
 # GaussNormal: one preferred normal of a Custom style.
 NORMAL = (
     Direction("vector", "Normal", "Preferred face normal (object space, need not be unit length)",
@@ -71,8 +77,10 @@ SLOT = (
           soft=(0.0, 10.0), live=Live.STYLES, panel=Panel.SLOT),
     Euler("orientation", "Orientation", "Rotation of the preferred normals (object space)",
           live=Live.STYLES, panel=Panel.SLOT, text="Rotation"),
+    # Checked for every preset (a value saved with a cube must be usable once it is a cone),
+    # shown only where it acts.
     Float("axis_contribution", "Axis Contribution", "Weight of the axis normals for presets that have them",
-          live=Live.STYLES, panel=Panel.SLOT, text="Axis Weight", relevant=_not_custom),
+          live=Live.STYLES, panel=Panel.SLOT, text="Axis Weight", relevant=_not_custom, shown=_has_rings),
     VertexGroup("vertex_group", "Vertex Group", "Region of this style (faces whose vertex weights average "
                 "above %g); empty means the whole mesh" % REGION_THRESHOLD,
                 live=Live.REGIONS, panel=Panel.SLOT, text="Region"),

@@ -1,8 +1,15 @@
-"""One stylization run of one object: solver, buffers and output target.
+"""One stylization run of one object: what it reads, its solver, buffers and output target.
 
-Used by the modal operator (one ``step()`` per timer tick), by the scripted
-operator (``step(n)`` once) and by the tick benchmark. Nothing here touches
-the UI. Set-up validates everything before the mesh is written, so a failed
+A run is set up in two parts. ``Plan(obj)`` reads and checks everything it
+needs from Blender on the main thread; a bad setting or mesh raises
+SettingsError there, before anything expensive happens. ``Plan.build_solver()``
+then sets up the solver from those arrays alone (no Blender data), so
+solver_setup.py may run it on another thread while Blender stays responsive.
+``Session(plan, solver)`` finishes on the main thread and makes the first change
+to the object. ``Session(obj)`` does all three at once (scripts, benchmarks).
+
+Used by the live run (one ``step()`` per timer tick), by the scripted operator
+(``step(n)``) and by the tick benchmark. Nothing here touches the UI. A failed
 start leaves the object as it was.
 """
 
@@ -14,7 +21,12 @@ from . import mesh_io, native, output, rest_store, schema, styles
 from .errors import SettingsError
 from .fields import Live, changes
 from .settings_io import add_slot, to_dict
-from .validation import check_coordinates, check_object, check_settings
+from .validation import check_coordinates, check_object, check_pins, check_settings
+
+# A result farther than this many mesh sizes from the rest mesh's centre is treated as a
+# blow-up: the solver keeps outputs within a few sizes, so this only catches a defect.
+MAX_EXTENT = 100.0
+
 
 def ensure_style_slot(settings):
     """An artist must be able to press Stylize right away: add a slot of the default preset
@@ -26,9 +38,23 @@ def ensure_style_slot(settings):
     return False
 
 
-class Session:
+def _solver_error(exc):
+    return SettingsError("The solver cannot handle this mesh or setting: %s" % exc)
+
+
+class Plan:
+    """Everything a run of ``obj`` needs from Blender, read and checked (main thread).
+
+    arrays:  mesh_io.MeshArrays (coordinates, loop triangles, corners)
+    weights: {vertex group name: (#V,) float32}, read once
+    applied: the settings (settings_io.to_dict) the solver is built with
+    pins, styles, face_styles: the solver's inputs derived from them
+    target:  output target, snapshot taken, nothing written yet
+    """
+
     def __init__(self, obj):
         self.obj = obj
+        self.name = obj.name  # for messages, also once the object is gone
         self.mesh = obj.data
         self.gauss_core = native.core()
         check_object(obj)
@@ -37,34 +63,85 @@ class Session:
         self.weights = mesh_io.read_group_weights(obj)
         settings = obj.gauss_stylization
         check_settings(obj, settings, self.weights)
-        self.target = output.make_target(obj, self.arrays.num_vertices)
-        # The settings the solver runs with (settings_io.to_dict); a tick compares them
-        # with the panel's to find what changed, and each change does what its field's
-        # Live says (schema.py): so no setting can be missed.
+        # The settings the solver runs with; a tick compares them with the panel's to find
+        # what changed, and each change does what its field's Live says (schema.py).
         self.applied = to_dict(settings)
-        self.solver = self._make_solver(settings)
+        self.pins = styles.pinned_vertices(self.weights, settings.pin_group)
+        check_pins(obj, self.pins, self.arrays.triangles)
+        try:
+            self.styles = styles.make_styles(self.gauss_core, settings.styles)
+        except (ValueError, TypeError) as exc:
+            raise _solver_error(exc) from exc
+        self.face_styles = self.face_styles_for(settings)
+        self.solver_options = {field.name: field.read(settings) for field in schema.SOLVER_SETTERS}
+        self.target = output.make_target(obj, self.arrays.num_vertices)
+
+    def face_styles_for(self, settings):
+        groups = [slot.vertex_group for slot in settings.styles]
+        return styles.face_styles(self.arrays, self.weights, groups, settings.uncovered)
+
+    @property
+    def num_vertices(self):
+        return self.arrays.num_vertices
+
+    def still_current(self):
+        """Is the object's mesh still the one this plan read? The interface stays usable while a
+        solver is set up on another thread, so the mesh may have been edited or deleted meanwhile."""
+        try:
+            if self.obj.data != self.mesh or len(self.mesh.vertices) != self.num_vertices:
+                return False
+        except ReferenceError:
+            return False
+        now = np.empty_like(self.arrays.coords)
+        mesh_io.read_base_coords(self.mesh, now)
+        return np.array_equal(now, self.arrays.coords)
+
+    def build_solver(self, progress=None):
+        """The solver set up for this plan. Reads no Blender data, so it may run on any thread.
+
+        progress: a gauss_core.Progress to watch (and cancel) the set-up from another thread;
+        a cancelled set-up raises gauss_core.Cancelled, which is passed on."""
+        options = dict(self.solver_options)
+        if progress is not None:
+            options["progress"] = progress
+        cancelled = getattr(self.gauss_core, "Cancelled", ())
+        try:
+            return self.gauss_core.Solver(self.arrays.coords, self.arrays.triangles,
+                                          pinned=self.pins if len(self.pins) else None, **options)
+        except cancelled:
+            raise
+        except (ValueError, TypeError, RuntimeError, MemoryError) as exc:
+            raise _solver_error(exc) from exc
+
+
+class Session:
+    def __init__(self, plan, solver=None):
+        """plan: a Plan, or an object to plan for now; solver: plan.build_solver()'s result,
+        built here when not given."""
+        if not isinstance(plan, Plan):
+            plan = Plan(plan)
+        if solver is None:
+            solver = plan.build_solver()
+        self.plan = plan
+        self.obj, self.mesh, self.gauss_core = plan.obj, plan.mesh, plan.gauss_core
+        self.arrays, self.weights, self.target = plan.arrays, plan.weights, plan.target
+        self.applied = plan.applied
+        self.started_with = plan.applied  # what the settings were when the run started
+        try:
+            solver.set_styles(plan.styles)
+            solver.set_face_styles(plan.face_styles)
+        except (ValueError, TypeError) as exc:
+            raise _solver_error(exc) from exc
+        self.solver = solver
         # The solver writes its result straight into this buffer every step.
         self.result = np.empty_like(self.arrays.coords)
-        self.finite = np.empty(self.result.shape, bool)  # preallocated: a tick allocates nothing
+        self.scratch = np.empty_like(self.arrays.coords)  # preallocated: a tick allocates nothing
+        lower, upper = self.arrays.coords.min(axis=0), self.arrays.coords.max(axis=0)
+        self.centre = ((lower + upper) / 2).astype(np.float32)
+        self.max_offset = np.float32(MAX_EXTENT * max(float((upper - lower).max()), 1e-30))
         self.steps = 0
         self.step_ms = []
         self.target.prepare()  # first change to the object: everything above succeeded
-
-    def _make_solver(self, settings):
-        pins = styles.pinned_vertices(self.weights, settings.pin_group)
-        try:
-            solver = self.gauss_core.Solver(
-                self.arrays.coords, self.arrays.triangles, pinned=pins if len(pins) else None,
-                **{field.name: field.read(settings) for field in schema.SOLVER_SETTERS})
-            solver.set_styles(styles.make_styles(self.gauss_core, settings.styles))
-            solver.set_face_styles(self._face_styles(settings))
-        except (ValueError, TypeError, RuntimeError) as exc:
-            raise SettingsError("The solver cannot handle this mesh or setting: %s" % exc) from exc
-        return solver
-
-    def _face_styles(self, settings):
-        groups = [slot.vertex_group for slot in settings.styles]
-        return styles.face_styles(self.arrays, self.weights, groups, settings.uncovered)
 
     # -- running ---------------------------------------------------------------
 
@@ -73,7 +150,7 @@ class Session:
         settings = self.obj.gauss_stylization
         wanted = to_dict(settings)
         changed = changes(schema.OBJECT, self.applied, wanted)
-        if changed:
+        if changed or self._group_deleted():
             try:
                 check_settings(self.obj, settings, self.weights)
                 self._apply(settings, changed)
@@ -84,13 +161,23 @@ class Session:
         self.applied = wanted
         return None
 
+    def _group_deleted(self):
+        """Is a vertex group the applied settings use gone from the object? (A few name look-ups.)"""
+        groups = self.obj.vertex_groups
+        if self.applied["pin_group"] and self.applied["pin_group"] not in groups:
+            return True
+        return any(slot["vertex_group"] and slot["vertex_group"] not in groups for slot in self.applied["styles"])
+
     def _apply(self, settings, changed):
         solver = self.solver
-        new_styles = faces = None
+        new_styles = faces = pins = None
         if Live.STYLES in changed:
             new_styles = styles.make_styles(self.gauss_core, settings.styles)
         if Live.REGIONS in changed:
-            faces = self._face_styles(settings)
+            faces = self.plan.face_styles_for(settings)
+        if Live.PINS in changed:
+            pins = styles.pinned_vertices(self.weights, settings.pin_group)
+            check_pins(self.obj, pins, self.arrays.triangles)
         # Never let face indices point past the style list, in either order.
         if new_styles is not None and len(new_styles) >= len(self.applied["styles"]):
             solver.set_styles(new_styles)
@@ -99,8 +186,8 @@ class Session:
             solver.set_face_styles(faces)
         if new_styles is not None:
             solver.set_styles(new_styles)
-        if Live.PINS in changed:
-            solver.set_pins(styles.pinned_vertices(self.weights, settings.pin_group))
+        if pins is not None:
+            solver.set_pins(pins)
         if Live.SETTER in changed:
             for field in schema.SOLVER_SETTERS:
                 setattr(solver, field.name, field.read(settings))
@@ -112,9 +199,14 @@ class Session:
         self.step_ms.append((time.perf_counter() - start) * 1000.0 / max(count, 1))
         self.steps += count
         self.solver.vertices_into(self.result)
-        if not np.isfinite(self.result, out=self.finite).all():  # never write NaN into the artist's mesh
-            raise SettingsError("The solver produced invalid positions (the mesh may have "
-                                "degenerate faces); try a larger Lambda or fix the mesh")
+        # Never write NaN or a blown-up shape into the artist's mesh (in place: no allocation).
+        offset = np.abs(np.subtract(self.result, self.centre, out=self.scratch), out=self.scratch).max()
+        if not offset <= self.max_offset:
+            raise SettingsError(
+                "The solver produced invalid positions after step %d (%s), so Stylize stopped. "
+                "This is a defect of the solver, not of your settings: please report it with the mesh"
+                % (self.steps, "not finite" if not np.isfinite(offset)
+                   else "%g times the mesh's size away" % (offset / self.max_offset * MAX_EXTENT)))
         self.target.write(self.result)
 
     # -- ending ----------------------------------------------------------------
@@ -144,3 +236,11 @@ class Session:
             return self.obj.data == self.mesh and self.mesh_alive()
         except ReferenceError:  # the object or mesh was deleted while running
             return False
+
+    @property
+    def name(self):
+        """The object's name now, or the one it had when the run started if it is gone."""
+        try:
+            return self.obj.name
+        except ReferenceError:
+            return self.plan.name

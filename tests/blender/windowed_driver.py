@@ -152,7 +152,7 @@ def wait_steps(count, limit=30.0):
     deadline = time.monotonic() + limit
     while time.monotonic() < deadline:
         op = live_operator()
-        if op is not None and op.session.steps >= count:
+        if op is not None and op.session is not None and op.session.steps >= count:
             return
         yield 0.05
 
@@ -177,9 +177,10 @@ def live_run(steps):
 def goes_on(name, more=3):
     """Generator: check ``name`` = the live run does ``more`` further steps."""
     op = live_operator()
-    steps = op.session.steps if op else 0
+    steps = op.session.steps if op and op.session else 0
     yield from wait_steps(steps + more)
-    check(name, live_operator() is not None and live_operator().session.steps >= steps + more)
+    op = live_operator()
+    check(name, op is not None and op.session is not None and op.session.steps >= steps + more)
 
 
 def end_with(key, name, obj_name, expected):

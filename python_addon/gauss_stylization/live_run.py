@@ -1,0 +1,177 @@
+"""The objects of one live run: their set-up on a worker thread, then solver steps at every tick.
+
+Nothing here touches the interface; the modal operator (operators.py) reports
+what ``finish_setup()`` and ``tick()`` return and shows ``status_text()``.
+
+A tick gives every object at most one step, in turn, until the tick's time
+budget is used; the next tick goes on with the object after the last one
+stepped (round-robin), so with a short budget every object still advances
+equally. An object whose settings cannot run pauses (the others go on); an
+object that fails or disappears is restored and leaves the run.
+"""
+
+import time
+
+from .errors import SettingsError
+from .progress import progress_text
+from .session import Session
+from .settings_io import to_dict
+from .solver_setup import SolverSetup
+from .targets import TITLE
+
+TICK_BUDGET = 1.0 / 30.0  # seconds of solver steps per tick before the rest wait for the next one
+
+
+class TickOutcome:
+    """paused:  [(object name, why)] for objects that paused at this tick (each reason once)
+    stopped: [(session, why)] for objects restored and taken out of the run"""
+
+    def __init__(self):
+        self.paused, self.stopped = [], []
+
+
+class LiveRun:
+    def __init__(self, planned):
+        """planned: targets.Planned; their solvers are set up from now on (SolverSetup)."""
+        self.planned = planned
+        self.setup = SolverSetup(planned.plans)
+        self.sessions = []
+        self.paused = {}     # session -> why it cannot step now
+        self.next = 0        # index of the session the next tick starts with
+        self.tick_ms = []
+
+    @property
+    def preparing(self):
+        return self.setup is not None
+
+    # -- set-up -------------------------------------------------------------------
+
+    def finish_setup(self):
+        """Once ``setup.done``: a Session per solver built. Returns [(object name, why)] of the skipped."""
+        skipped = []
+        for plan, result in zip(self.planned.plans, self.setup.results):
+            if not isinstance(result, Exception) and result is not None and not plan.still_current():
+                result = SettingsError("its mesh changed while Stylize was preparing; press Stylize again")
+            if isinstance(result, Exception) or result is None:
+                skipped.append((plan.name, str(result or "the set-up did not finish")))
+                continue
+            try:
+                self.sessions.append(Session(plan, result))
+            except SettingsError as exc:
+                skipped.append((plan.name, str(exc)))
+        self.setup = None
+        return skipped
+
+    # -- running ------------------------------------------------------------------
+
+    def tick(self, budget=TICK_BUDGET):
+        """Sync settings and step objects in turn for up to ``budget`` seconds (at least one step)."""
+        outcome = TickOutcome()
+        start = time.perf_counter()
+        count = len(self.sessions)
+        stepped = 0
+        for offset in range(count):
+            index = (self.next + offset) % count
+            session = self.sessions[index]
+            if not session.object_alive():
+                outcome.stopped.append((session, "the object was deleted or its mesh replaced"))
+                continue
+            problem = session.sync_settings()
+            if problem is not None:
+                if self.paused.get(session) != problem:
+                    outcome.paused.append((session.name, problem))
+                self.paused[session] = problem
+                continue
+            self.paused.pop(session, None)
+            try:
+                session.step()
+            except (SettingsError, ValueError, RuntimeError) as exc:
+                outcome.stopped.append((session, str(exc)))
+                continue
+            stepped += 1
+            self.next = (index + 1) % count
+            if time.perf_counter() - start > budget:
+                break
+        if stepped:
+            self.tick_ms.append((time.perf_counter() - start) * 1000.0)
+        for session, _why in outcome.stopped:
+            self._drop(session)
+        return outcome
+
+    def _drop(self, session):
+        """Restore ``session``'s object as far as it exists and take it out of the run."""
+        self.sessions.remove(session)
+        self.paused.pop(session, None)
+        self.next = 0
+        session.cancel()
+
+    def drop_gone(self):
+        """Take the objects deleted since the last tick out (before keeping). Returns their names."""
+        gone = [session for session in self.sessions if not session.object_alive()]
+        for session in gone:
+            self._drop(session)
+        return [session.name for session in gone]
+
+    def edited(self):
+        """Did the run's objects get settings other than those they started with (or a default style)?"""
+        if self.planned.slot_added:
+            return True
+        return any(session.object_alive() and to_dict(session.obj.gauss_stylization) != session.started_with
+                   for session in self.sessions)
+
+    # -- ending -------------------------------------------------------------------
+
+    def keep(self):
+        for session in self.sessions:
+            session.keep()
+
+    def cancel(self):
+        """Restore every object (a set-up still running is stopped: nothing was changed yet)."""
+        if self.setup is not None:
+            self.setup.cancel()
+            self.setup = None
+            self.planned.undo_added_slots()
+            return
+        failure = None
+        for session in self.sessions:  # restore as many as possible even if one fails
+            try:
+                session.cancel()
+            except Exception as exc:  # noqa: BLE001 (re-raised below, after the others)
+                failure = failure or exc
+        if failure is not None:
+            raise failure
+
+    # -- what it shows ------------------------------------------------------------
+
+    @property
+    def steps(self):
+        """Steps of the first object (what the redo panel repeats)."""
+        return self.sessions[0].steps if self.sessions else 0
+
+    def status_text(self):
+        """One line for the header and the status bar (without the key hints)."""
+        if self.preparing:
+            return TITLE + ": " + progress_text(self.setup.text(), self.setup.fraction)
+        sessions = self.sessions
+        if not sessions:
+            return TITLE
+        if len(sessions) == 1:
+            text = TITLE + ": step %d" % sessions[0].steps
+            if sessions[0].step_ms and self.tick_ms:
+                text += "  |  %.1f ms/step, %.1f ms/tick" % (sessions[0].step_ms[-1], self.tick_ms[-1])
+        else:
+            steps = [session.steps for session in sessions]
+            text = TITLE + ": %d objects, step %s" % (
+                len(sessions), min(steps) if min(steps) == max(steps) else "%d-%d" % (min(steps), max(steps)))
+            if self.tick_ms:
+                text += "  |  %.1f ms/tick" % self.tick_ms[-1]
+        for session, why in self.paused.items():
+            text += "  |  " + (("'%s' paused: " % session.name) if len(sessions) > 1 else "paused: ") + why
+        return text
+
+    def panel_lines(self):
+        """(text, icon) rows for the sidebar: what runs and how far it is."""
+        if self.preparing:
+            return [(progress_text(self.setup.text(), self.setup.fraction), 'TIME')]
+        return [("%s: %s" % (session.name, "paused" if session in self.paused else "step %d" % session.steps),
+                 'PAUSE' if session in self.paused else 'MESH_DATA') for session in self.sessions]
