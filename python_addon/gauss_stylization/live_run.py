@@ -68,10 +68,10 @@ class LiveRun:
         """Sync settings and step objects in turn for up to ``budget`` seconds (at least one step)."""
         outcome = TickOutcome()
         start = time.perf_counter()
-        count = len(self.sessions)
+        count, first = len(self.sessions), self.next
         stepped = 0
         for offset in range(count):
-            index = (self.next + offset) % count
+            index = (first + offset) % count
             session = self.sessions[index]
             if not session.object_alive():
                 outcome.stopped.append((session, "the object was deleted or its mesh replaced"))

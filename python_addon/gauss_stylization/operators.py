@@ -8,6 +8,8 @@ background mode and from the redo panel it runs a fixed number of steps
 (scripted_run.py). Either way a kept run is one undo step.
 """
 
+import time
+
 import bpy
 from bpy.props import StringProperty
 
@@ -20,6 +22,7 @@ from .validation import object_problem, poll_result
 from .viewport import existing_area, redraw_viewports
 
 TICK_SECONDS = 0.01
+PANEL_SECONDS = 0.25  # how often a live run redraws the sidebar (the viewport: every tick)
 KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel")  # what modal_events does with keys
 HINT = "  |  ".join(KEY_HINTS)
 SETUP_HINT = "Esc: cancel"
@@ -81,6 +84,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         self._area_pointer = context.area.as_pointer() if context.area else None
         self._operator_at_start = _last_registered_operator(context)
         self._progress = ProgressReport(context, TITLE, status=False)
+        self._panels_drawn = 0.0
         window_manager = context.window_manager
         self._timer = window_manager.event_timer_add(TICK_SECONDS, window=context.window)
         window_manager.modal_handler_add(self)
@@ -137,7 +141,11 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         if not live.sessions:
             self.stop(context, keep=False)
             return {'CANCELLED'}
-        redraw_viewports(context)
+        now = time.monotonic()
+        panels = now - self._panels_drawn > PANEL_SECONDS  # the step count in the sidebar
+        if panels:
+            self._panels_drawn = now
+        redraw_viewports(context, sidebars=panels)
         self._show_status(context)
         return {'PASS_THROUGH'}  # other operators may own this timer event
 

@@ -35,10 +35,18 @@ def existing_area(pointer):
     return None
 
 
-def redraw_viewports(context):
+def redraw_viewports(context, sidebars=True):
+    """Redraw the 3D views; ``sidebars``: their sidebars too (a run's ticks leave them out:
+    redrawing every panel at every tick costs more than the tick itself on a slow machine)."""
     for area in context.window.screen.areas if context.window else ():
-        if area.type == 'VIEW_3D':
+        if area.type != 'VIEW_3D':
+            continue
+        if sidebars:
             area.tag_redraw()
+            continue
+        for region in area.regions:
+            if region.type == 'WINDOW':
+                region.tag_redraw()
 
 
 class Rect:
