@@ -23,8 +23,8 @@ from .fields import Live, changes
 from .settings_io import add_slot, to_dict
 from .validation import check_coordinates, check_object, check_pins, check_settings
 
-# A result farther than this many mesh sizes from the rest mesh's centre is treated as a
-# blow-up: the solver keeps outputs within a few sizes, so this only catches a defect.
+# A result outside the rest mesh's coordinate range widened by this many mesh sizes is treated
+# as a blow-up: the solver keeps outputs within a few sizes, so this only catches a defect.
 MAX_EXTENT = 100.0
 
 
@@ -135,10 +135,10 @@ class Session:
         self.solver = solver
         # The solver writes its result straight into this buffer every step.
         self.result = np.empty_like(self.arrays.coords)
-        self.scratch = np.empty_like(self.arrays.coords)  # preallocated: a tick allocates nothing
-        lower, upper = self.arrays.coords.min(axis=0), self.arrays.coords.max(axis=0)
-        self.centre = ((lower + upper) / 2).astype(np.float32)
-        self.max_offset = np.float32(MAX_EXTENT * max(float((upper - lower).max()), 1e-30))
+        # Coordinates beyond these (MAX_EXTENT mesh sizes around the rest mesh) mean a blow-up.
+        lower, upper = float(self.arrays.coords.min()), float(self.arrays.coords.max())
+        margin = MAX_EXTENT * max(upper - lower, 1e-30)
+        self.bounds = (lower - margin, upper + margin)
         self.steps = 0
         self.step_ms = []
         self.target.prepare()  # first change to the object: everything above succeeded
@@ -199,14 +199,15 @@ class Session:
         self.step_ms.append((time.perf_counter() - start) * 1000.0 / max(count, 1))
         self.steps += count
         self.solver.vertices_into(self.result)
-        # Never write NaN or a blown-up shape into the artist's mesh (in place: no allocation).
-        offset = np.abs(np.subtract(self.result, self.centre, out=self.scratch), out=self.scratch).max()
-        if not offset <= self.max_offset:
+        # Never write NaN or a blown-up shape into the artist's mesh: two reductions, which
+        # propagate NaN and allocate nothing.
+        low, high = self.result.min(), self.result.max()
+        if not (self.bounds[0] <= low and high <= self.bounds[1]):
             raise SettingsError(
                 "The solver produced invalid positions after step %d (%s), so Stylize stopped. "
                 "This is a defect of the solver, not of your settings: please report it with the mesh"
-                % (self.steps, "not finite" if not np.isfinite(offset)
-                   else "%g times the mesh's size away" % (offset / self.max_offset * MAX_EXTENT)))
+                % (self.steps, "not finite" if not (np.isfinite(low) and np.isfinite(high))
+                   else "more than %g times the mesh's size away" % MAX_EXTENT))
         self.target.write(self.result)
 
     # -- ending ----------------------------------------------------------------

@@ -270,3 +270,34 @@ def test_nan_in_settings_json(addon):
     with pytest.raises(RuntimeError, match="Mu must be a number"):
         bpy.ops.object.gauss_stylize(iterations=5, settings_json=json.dumps(settings))
     assert np.array_equal(helpers.coords(obj), before)
+
+
+def test_all_vertices_pinned_says_nothing_can_move():
+    # Issue 14 item 6: this used to finish silently, having moved nothing.
+    obj = _suzanne_with_slot(preset='CUBE')
+    helpers.add_group(obj, "Everything", range(len(obj.data.vertices)))
+    obj.gauss_stylization.pin_group = "Everything"
+    _assert_refused(obj, "Every vertex of 'Suzanne' is in the Pin Group 'Everything', so nothing can move")
+
+
+@pytest.mark.parametrize("value, said", [(1e6, "more than 100 times the mesh's size away"), (math.inf, "not finite")])
+def test_a_blown_up_result_is_refused_with_an_accurate_message(monkeypatch, addon, value, said):
+    # Issue 14 item 6: "try a larger Lambda or fix the mesh" did not help; a finite blow-up
+    # (1e20 times the mesh's size on the hole-filled bunny) was written into the mesh.
+    obj = _suzanne_with_slot(preset='CUBE')
+    gauss_core = addon.native.core()
+    real = gauss_core.Solver
+
+    class BlowingUp:
+        def __init__(self, *args, **kwargs):
+            self.inner = real(*args, **kwargs)
+
+        def __getattr__(self, name):
+            return getattr(self.inner, name)
+
+        def vertices_into(self, out):
+            self.inner.vertices_into(out)
+            out[7] = value
+
+    monkeypatch.setattr(gauss_core, "Solver", BlowingUp)
+    _assert_refused(obj, "invalid positions after step 1 \\(%s\\).*a defect of the solver, not of your settings" % said)

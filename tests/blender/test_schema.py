@@ -168,6 +168,17 @@ def test_panel_rows_follow_the_schema(addon):
                                            "custom_normals"]
 
 
+def test_axis_weight_is_shown_only_for_presets_the_solver_gives_rings(addon):
+    # Issue 14 item 6: it was shown for every preset but acts only where there are rings.
+    gauss_core = addon.native.core()
+    assert "axis_contribution" not in _slot_rows(addon, 'CUBE')
+    for name in gauss_core.PRESETS:
+        has_rings = len(gauss_core.Style.preset(name).ring_offsets) > 0
+        assert ("axis_contribution" in _slot_rows(addon, name.upper())) == has_rings, name
+    assert {name for name in gauss_core.PRESETS if len(gauss_core.Style.preset(name).ring_offsets)} == \
+        {"cylinder", "cone", "double_cone"}
+
+
 _WITHOUT_MODULE = """
 import sys, bpy
 sys.path.insert(0, sys.argv[-1])
