@@ -98,4 +98,6 @@ class SolverSetup:
             self._thread.join(POLL_SECONDS)
             if report is not None:
                 report.update(self.fraction, self.text())
+        if report is not None:  # the end of the stage, also when it ended before the first look
+            report.update(self.fraction, self.text())
         return self.results
