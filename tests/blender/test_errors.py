@@ -140,12 +140,12 @@ def test_broken_meshes_from_the_corpus(name):
         assert result == {'FINISHED'} and np.isfinite(helpers.coords(obj)).all()
 
 
-def test_solver_producing_nan_is_reported_and_undone(monkeypatch, addon):
-    obj = _suzanne_with_slot(preset='CUBE')
+def _solver_writing(monkeypatch, addon, change):
+    """gauss_core.Solver replaced by one whose vertices_into() passes its result through ``change``."""
     gauss_core = addon.native.core()
     real = gauss_core.Solver
 
-    class Diverging:
+    class Changed:
         def __init__(self, *args, **kwargs):
             self.inner = real(*args, **kwargs)
 
@@ -153,9 +153,15 @@ def test_solver_producing_nan_is_reported_and_undone(monkeypatch, addon):
             return getattr(self.inner, name)
 
         def vertices_into(self, out):
-            out[...] = math.nan
+            self.inner.vertices_into(out)
+            change(out)
 
-    monkeypatch.setattr(gauss_core, "Solver", Diverging)
+    monkeypatch.setattr(gauss_core, "Solver", Changed)
+
+
+def test_solver_producing_nan_is_reported_and_undone(monkeypatch, addon):
+    obj = _suzanne_with_slot(preset='CUBE')
+    _solver_writing(monkeypatch, addon, lambda out: out.fill(math.nan))
     _assert_refused(obj, "invalid positions")
     assert len(obj.gauss_stylization.styles) == 1
 
@@ -285,19 +291,5 @@ def test_a_blown_up_result_is_refused_with_an_accurate_message(monkeypatch, addo
     # Issue 14 item 6: "try a larger Lambda or fix the mesh" did not help; a finite blow-up
     # (1e20 times the mesh's size on the hole-filled bunny) was written into the mesh.
     obj = _suzanne_with_slot(preset='CUBE')
-    gauss_core = addon.native.core()
-    real = gauss_core.Solver
-
-    class BlowingUp:
-        def __init__(self, *args, **kwargs):
-            self.inner = real(*args, **kwargs)
-
-        def __getattr__(self, name):
-            return getattr(self.inner, name)
-
-        def vertices_into(self, out):
-            self.inner.vertices_into(out)
-            out[7] = value
-
-    monkeypatch.setattr(gauss_core, "Solver", BlowingUp)
+    _solver_writing(monkeypatch, addon, lambda out: out.__setitem__(7, value))
     _assert_refused(obj, "invalid positions after step 1 \\(%s\\).*a defect of the solver, not of your settings" % said)

@@ -137,25 +137,33 @@ def selection_state(obj):
 
 # -- undo (issue 14 item 1) ----------------------------------------------------------------
 
+def edit_during_a_run(name, sigma, ending, states):
+    """Generator: a live run in which Sigma is typed into the sidebar and the object is moved
+    with G and a click, ended by the key ``ending``; states["before"] / ["after"]: the object's
+    selection_state() before the run (an undo step) and after it ended."""
+    obj = activate(bpy.data.objects[name])
+    push_undo("Before the run")
+    states["before"] = selection_state(obj)
+    yield from live_run(5)
+    yield from type_into_field(SIGMA_PATH, sigma)
+    check("Sigma typed into the sidebar during a run reaches the run",
+          live_operator() is not None and obj.gauss_stylization.styles[0].sigma == float(sigma))
+    location = tuple(obj.location)
+    yield from move_with_g()
+    check("G and a click during a run move the object and leave the run going",
+          live_operator() is not None and tuple(obj.location) != location)
+    yield from wait_steps(live_operator().session.steps + 3 if live_operator() else 0)
+    yield from key(ending)
+    yield from wait_stopped()
+    states["after"] = selection_state(bpy.data.objects[name])
+
+
 def sigma_and_move_during_a_kept_run(name):
     """Sigma typed into the sidebar and a G move during a run, then Enter: one Ctrl+Z gives
     back exactly the mesh (and settings, and place) from before the run."""
-    obj = bpy.data.objects[name]
-    activate(obj)
-    push_undo("Before the run")
-    before = selection_state(obj)
-    yield from live_run(5)
-    yield from type_into_field(SIGMA_PATH, "8")
-    check("Sigma typed into the sidebar during a run reaches the run",
-          live_operator() is not None and obj.gauss_stylization.styles[0].sigma == 8.0)
-    yield from move_with_g()
-    check("G and a click during a run move the object and leave the run going",
-          live_operator() is not None and tuple(obj.location) != before[1])
-    yield from wait_steps(live_operator().session.steps + 3 if live_operator() else 0)
-    yield from key('RET')
-    yield from wait_stopped()
-    obj = bpy.data.objects[name]
-    kept = selection_state(obj)
+    states = {}
+    yield from edit_during_a_run(name, "8", 'RET', states)
+    before, kept = states["before"], states["after"]
     check("Enter keeps the run (with the edits made during it)",
           live_operator() is None and not np.array_equal(kept[0], before[0]) and kept[2] == 8.0)
     yield from key('Z', ctrl=True)
@@ -175,17 +183,9 @@ def sigma_and_move_during_a_kept_run(name):
 def sigma_and_move_during_a_cancelled_run(name):
     """The same edits, then Esc: neither redo nor undo shows a cancelled shape; the edits
     are one undo step."""
-    obj = bpy.data.objects[name]
-    push_undo("Before the cancelled run")
-    before = selection_state(obj)
-    yield from live_run(5)
-    yield from type_into_field(SIGMA_PATH, "7")
-    yield from move_with_g()
-    yield from wait_steps(live_operator().session.steps + 3 if live_operator() else 0)
-    yield from key('ESC')
-    yield from wait_stopped()
-    obj = bpy.data.objects[name]
-    after_esc = selection_state(obj)
+    states = {}
+    yield from edit_during_a_run(name, "7", 'ESC', states)
+    before, after_esc = states["before"], states["after"]
     check("Esc restores the mesh bit-exactly and keeps the edits",
           np.array_equal(after_esc[0], before[0]) and after_esc[2] == 7.0 and after_esc[1] != before[1])
     never = []
