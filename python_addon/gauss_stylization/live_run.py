@@ -50,15 +50,16 @@ class LiveRun:
         """Once ``setup.done``: a Session per solver built. Returns [(object name, why)] of the skipped."""
         skipped = []
         for plan, result in zip(self.planned.plans, self.setup.results):
-            if not isinstance(result, Exception) and result is not None and not plan.still_current():
-                result = SettingsError("its mesh changed while Stylize was preparing; press Stylize again")
-            if isinstance(result, Exception) or result is None:
-                skipped.append((plan.name, str(result or "the set-up did not finish")))
-                continue
             try:
+                if isinstance(result, Exception) or result is None:
+                    raise result or SettingsError("the set-up did not finish")
+                why = plan.changed()
+                if why is not None:
+                    raise SettingsError(why)
                 self.sessions.append(Session(plan, result))
             except SettingsError as exc:
                 skipped.append((plan.name, str(exc)))
+                self.planned.give_up(plan)
         self.setup = None
         return skipped
 
@@ -113,11 +114,17 @@ class LiveRun:
         return [session.name for session in gone]
 
     def edited(self):
-        """Did the run's objects get settings other than those they started with (or a default style)?"""
-        if self.planned.slot_added:
+        """Do the run's objects have settings other than those they started with (or a default
+        style the run added and keeps)? Asked before a cancel."""
+        if self.setup is None and self.planned.slot_added:
             return True
-        return any(session.object_alive() and to_dict(session.obj.gauss_stylization) != session.started_with
-                   for session in self.sessions)
+        for plan in self.planned.plans:
+            try:
+                if to_dict(plan.obj.gauss_stylization) != plan.applied:
+                    return True
+            except ReferenceError:  # deleted during the run: an edit too
+                return True
+        return False
 
     # -- ending -------------------------------------------------------------------
 

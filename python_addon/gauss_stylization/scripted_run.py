@@ -30,8 +30,7 @@ def _set_up(planned, report):
             sessions.append(Session(plan, result))
         except SettingsError as exc:
             failed.append((plan.name, str(exc)))
-            if plan.obj in planned.slot_added:  # a failed start changes nothing, settings included
-                plan.obj.gauss_stylization.styles.remove(0)
+            planned.give_up(plan)
     return sessions, failed
 
 

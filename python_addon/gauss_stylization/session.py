@@ -84,17 +84,19 @@ class Plan:
     def num_vertices(self):
         return self.arrays.num_vertices
 
-    def still_current(self):
-        """Is the object's mesh still the one this plan read? The interface stays usable while a
-        solver is set up on another thread, so the mesh may have been edited or deleted meanwhile."""
+    def changed(self):
+        """Why the object is no longer what this plan read (None if it still is). The interface stays
+        usable while a solver is set up on another thread, so it may have been edited or deleted."""
         try:
             if self.obj.data != self.mesh or len(self.mesh.vertices) != self.num_vertices:
-                return False
+                return "its mesh was replaced or edited while Stylize was preparing; press Stylize again"
         except ReferenceError:
-            return False
+            return "it was deleted while Stylize was preparing"
         now = np.empty_like(self.arrays.coords)
         mesh_io.read_base_coords(self.mesh, now)
-        return np.array_equal(now, self.arrays.coords)
+        if not np.array_equal(now, self.arrays.coords):
+            return "its mesh was edited while Stylize was preparing; press Stylize again"
+        return None
 
     def build_solver(self, progress=None):
         """The solver set up for this plan. Reads no Blender data, so it may run on any thread.
@@ -126,7 +128,6 @@ class Session:
         self.obj, self.mesh, self.gauss_core = plan.obj, plan.mesh, plan.gauss_core
         self.arrays, self.weights, self.target = plan.arrays, plan.weights, plan.target
         self.applied = plan.applied
-        self.started_with = plan.applied  # what the settings were when the run started
         try:
             solver.set_styles(plan.styles)
             solver.set_face_styles(plan.face_styles)

@@ -49,14 +49,21 @@ class Planned:
     def objects(self):
         return [plan.obj for plan in self.plans]
 
-    def undo_added_slots(self):
-        """Take back the default slots (a run that never started changes nothing)."""
-        for obj in self.slot_added:
+    def give_up(self, plan):
+        """``plan``'s object will not be stylized: take back the default slot it was given
+        (a start that fails changes nothing, settings included)."""
+        obj = plan.obj
+        if obj in self.slot_added:
+            self.slot_added.remove(obj)
             try:
                 obj.gauss_stylization.styles.remove(0)
             except ReferenceError:  # deleted meanwhile
                 pass
-        self.slot_added = []
+
+    def undo_added_slots(self):
+        """Take back every default slot (a run cancelled while it was preparing changes nothing)."""
+        for plan in self.plans:
+            self.give_up(plan)
 
 
 def report_skipped(operator, skipped, any_left):
