@@ -26,7 +26,7 @@ count() {  # $1: a line "N passed, M failed"
 
 driver() {  # $1: driver script, $2: its result file in $SHOTS
     rm -f "$SHOTS/$2"
-    timeout 600 $XVFB "$SCREEN" blender --factory-startup --enable-event-simulate --python-exit-code 1 \
+    timeout 1000 $XVFB "$SCREEN" blender --factory-startup --enable-event-simulate --python-exit-code 1 \
         -P "$HERE/$1" -- "$BUILD"
     status=$?
     if [ ! -s "$SHOTS/$2" ]; then
