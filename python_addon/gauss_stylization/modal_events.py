@@ -14,10 +14,14 @@ business) or what modal() returns: {'RUNNING_MODAL'} to take the event,
     run.preparing           -> True while the solvers are still being set up
     run.live.sessions       -> the session.Session of each object in the run
     run.scratch             -> dict for handlers' own state during this run, by handler name
+    run.notes               -> dict of texts the status bar shows after the run's own, by name
+    run.show_status(context)   redraws the header and status bar (after a handler changed notes)
 
-Another feature adds its handler with ``add(handler, order)`` when it registers
-(and removes it when it unregisters); e.g. pin handles take presses on pins at
-order HANDLES, before a plain click keeps the result.
+Another feature adds its handler with ``add(handler, order, on_end)`` when it
+registers (and removes it when it unregisters); e.g. pin handles take presses
+on pins at order HANDLES, before a plain click keeps the result. ``on_end(run,
+context, keep)``, if given, is called once when the run ends, however it ends,
+before the meshes are kept or restored.
 """
 
 from .viewport import drag_distance_exceeded, free_viewport_at
@@ -26,13 +30,13 @@ KEYS = 100      # Enter, Esc, Ctrl+Z, Tab
 HANDLES = 200   # for things in the viewport that take presses and drags (pin handles)
 CLICKS = 300    # a plain click in the free viewport keeps, a right-click cancels
 
-_handlers = []  # (order, handler), sorted by order
+_handlers = []  # (order, handler, on_end), sorted by order
 
 
-def add(handler, order):
+def add(handler, order, on_end=None):
     """Ask ``handler`` about every event of a live run, after those of lower order."""
     remove(handler)
-    _handlers.append((order, handler))
+    _handlers.append((order, handler, on_end))
     _handlers.sort(key=lambda item: item[0])
 
 
@@ -41,11 +45,22 @@ def remove(handler):
 
 
 def dispatch(run, context, event):
-    for _order, handler in tuple(_handlers):
+    if event.value == 'PRESS':
+        # A press starts a new click, whoever takes it: a press the click handler never saw
+        # (taken by a handle, or by Blender's gizmo) must not pair with an older one.
+        run.scratch.pop("click", None)
+    for _order, handler, _on_end in tuple(_handlers):
         result = handler(run, context, event)
         if result is not None:
             return result
     return {'PASS_THROUGH'}
+
+
+def run_ended(run, context, keep):
+    """Tell every handler that asked (on_end) that ``run`` ends; called once per run."""
+    for _order, _handler, on_end in tuple(_handlers):
+        if on_end is not None:
+            on_end(run, context, keep)
 
 
 # -- the run's own handlers ----------------------------------------------------------------

@@ -79,7 +79,9 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         if planned is None:
             return {'CANCELLED'}
         self.live = LiveRun(planned)
-        self.scratch = {}
+        self.scratch = {}  # event handlers' state (modal_events)
+        self.notes = {}    # event handlers' status texts (modal_events)
+        self._handlers_told = False  # modal_events.run_ended called
         # The area's address only, never a Python reference to it: see viewport.existing_area.
         self._area_pointer = context.area.as_pointer() if context.area else None
         self._operator_at_start = _last_registered_operator(context)
@@ -89,7 +91,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         self._timer = window_manager.event_timer_add(TICK_SECONDS, window=context.window)
         window_manager.modal_handler_add(self)
         runs.start(planned.objects, self)
-        self._show_status(context)
+        self.show_status(context)
         return {'RUNNING_MODAL'}
 
     def modal(self, context, event):
@@ -115,7 +117,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         if live.preparing:
             if not live.setup.done:
                 self._progress.update(live.setup.fraction, live.setup.text())
-                self._show_status(context)
+                self.show_status(context)
                 return {'PASS_THROUGH'}
             self._progress.end()
             if context.mode != 'OBJECT':  # nothing was changed yet: cancel rather than keep
@@ -146,7 +148,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         if panels:
             self._panels_drawn = now
         redraw_viewports(context, sidebars=panels)
-        self._show_status(context)
+        self.show_status(context)
         return {'PASS_THROUGH'}  # other operators may own this timer event
 
     def end(self, context, keep):
@@ -176,6 +178,12 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         if self._timer is None:
             return
         live = self.live
+        if not self._handlers_told:
+            self._handlers_told = True
+            try:
+                modal_events.run_ended(self, context, keep)
+            except Exception as exc:  # a feature's clean-up must not keep the meshes from being restored
+                self.report({'WARNING'}, "Stylize: ending a handler failed: %s" % exc)
         if keep:  # should this raise, the run is still on and modal() cancels it
             live.keep()
             self.iterations = min(live.steps, _STEPS.hard[1])
@@ -188,17 +196,19 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             self._timer = None
             runs.forget(self)
             self._progress.end()
-            self._show_status(context, clear=True)
+            self.show_status(context, clear=True)
             redraw_viewports(context)
 
     def cancel(self, context):
         # Blender cancels a modal operator when e.g. its window closes, a file loads or it quits.
         self.stop(context, keep=False)
 
-    def _show_status(self, context, clear=False):
+    def show_status(self, context, clear=False):
+        """Write the header and status bar text (event handlers call it after changing notes)."""
         text = None
         if not clear:
-            text = self.live.status_text() + "  |  " + (SETUP_HINT if self.live.preparing else HINT)
+            notes = "".join("  |  " + note for note in self.notes.values() if note)
+            text = self.live.status_text() + notes + "  |  " + (SETUP_HINT if self.live.preparing else HINT)
         area = existing_area(self._area_pointer)
         if area is not None:
             area.header_text_set(text)
