@@ -56,7 +56,7 @@ class LiveRun:
                 why = plan.changed()
                 if why is not None:
                     raise SettingsError(why)
-                self.sessions.append(Session(plan, result))
+                self.sessions.append(Session(plan, result, background_pins=True))
             except SettingsError as exc:
                 skipped.append((plan.name, str(exc)))
                 self.planned.give_up(plan)
@@ -76,6 +76,8 @@ class LiveRun:
             session = self.sessions[index]
             if not session.object_alive():
                 outcome.stopped.append((session, "the object was deleted or its mesh replaced"))
+                continue
+            if session.busy is not None:  # re-factoring for new pins on another thread
                 continue
             problem = session.sync_settings()
             if problem is not None:
@@ -174,11 +176,28 @@ class LiveRun:
                 text += "  |  %.1f ms/tick" % self.tick_ms[-1]
         for session, why in self.paused.items():
             text += "  |  " + (("'%s' paused: " % session.name) if len(sessions) > 1 else "paused: ") + why
+        for session in sessions:
+            busy = session.busy
+            if busy is not None:
+                text += "  |  " + ("'%s': " % session.name if len(sessions) > 1 else "") + progress_text(
+                    busy.text(), busy.fraction)
         return text
+
+    def busy(self):
+        """A set-up the run waits for besides the first one (new pins being prepared), or None."""
+        return next((session.busy for session in self.sessions if session.busy is not None), None)
 
     def panel_lines(self):
         """(text, icon) rows for the sidebar: what runs and how far it is."""
         if self.preparing:
             return [(progress_text(self.setup.text(), self.setup.fraction), 'TIME')]
-        return [("%s: %s" % (session.name, "paused" if session in self.paused else "step %d" % session.steps),
-                 'PAUSE' if session in self.paused else 'MESH_DATA') for session in self.sessions]
+        lines = []
+        for session in self.sessions:
+            busy = session.busy
+            if busy is not None:
+                lines.append(("%s: %s" % (session.name, progress_text(busy.text(), busy.fraction)), 'TIME'))
+            elif session in self.paused:
+                lines.append(("%s: paused" % session.name, 'PAUSE'))
+            else:
+                lines.append(("%s: step %d" % (session.name, session.steps), 'MESH_DATA'))
+        return lines

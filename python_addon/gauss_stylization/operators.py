@@ -120,6 +120,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
                 self.show_status(context)
                 return {'PASS_THROUGH'}
             self._progress.end()
+            self._progress = None
             if context.mode != 'OBJECT':  # nothing was changed yet: cancel rather than keep
                 self.stop(context, keep=False)
                 self.report({'WARNING'}, "Stylize cancelled: the object left Object Mode while it was preparing")
@@ -143,6 +144,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         if not live.sessions:
             self.stop(context, keep=False)
             return {'CANCELLED'}
+        self._show_busy(context)
         now = time.monotonic()
         panels = now - self._panels_drawn > PANEL_SECONDS  # the step count in the sidebar
         if panels:
@@ -150,6 +152,16 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         redraw_viewports(context, sidebars=panels)
         self.show_status(context)
         return {'PASS_THROUGH'}  # other operators may own this timer event
+
+    def _show_busy(self, context):
+        """Progress of new pins being prepared (shown, like the set-up's, after half a second)."""
+        busy = self.live.busy()
+        if busy is not None:
+            self._progress = self._progress or ProgressReport(context, TITLE, status=False)
+            self._progress.update(busy.fraction, busy.text())
+        elif self._progress is not None:
+            self._progress.end()
+            self._progress = None
 
     def end(self, context, keep):
         """End the run from an event (see modal_events): keep the results or restore every mesh.
@@ -195,7 +207,8 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             context.window_manager.event_timer_remove(self._timer)
             self._timer = None
             runs.forget(self)
-            self._progress.end()
+            if self._progress is not None:
+                self._progress.end()
             self.show_status(context, clear=True)
             redraw_viewports(context)
 

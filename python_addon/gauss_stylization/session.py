@@ -21,6 +21,7 @@ from . import mesh_io, native, output, rest_store, schema, styles
 from .errors import SettingsError
 from .fields import Live, changes
 from .settings_io import add_slot, to_dict
+from .solver_setup import PinsSetup
 from .validation import check_coordinates, check_object, check_pins, check_settings
 
 # A result outside the rest mesh's coordinate range widened by this many mesh sizes is treated
@@ -117,9 +118,10 @@ class Plan:
 
 
 class Session:
-    def __init__(self, plan, solver=None):
+    def __init__(self, plan, solver=None, background_pins=False):
         """plan: a Plan, or an object to plan for now; solver: plan.build_solver()'s result,
-        built here when not given."""
+        built here when not given; background_pins: a Pin Group change re-factors on a worker
+        thread (solver_setup.PinsSetup) while the session waits, instead of inside sync_settings()."""
         if not isinstance(plan, Plan):
             plan = Plan(plan)
         if solver is None:
@@ -142,12 +144,25 @@ class Session:
         self.bounds = (lower - margin, upper + margin)
         self.steps = 0
         self.step_ms = []
+        self.background_pins = background_pins and hasattr(self.gauss_core, "Progress")
+        self.pins_setup = None         # a PinsSetup running or not yet looked at
+        self._pin_group_before = None  # applied["pin_group"] before it
         self.target.prepare()  # first change to the object: everything above succeeded
 
     # -- running ---------------------------------------------------------------
 
+    @property
+    def busy(self):
+        """The PinsSetup the solver is busy with (no step until it is done), or None."""
+        setup = self.pins_setup
+        return setup if setup is not None and not setup.done else None
+
     def sync_settings(self):
-        """Send changed settings to the solver. Returns None, or why it cannot run now."""
+        """Send changed settings to the solver. Returns None, or why it cannot run now.
+        Not while ``busy``."""
+        problem = self._finish_pins()
+        if problem is not None:
+            return problem
         settings = self.obj.gauss_stylization
         wanted = to_dict(settings)
         changed = changes(schema.OBJECT, self.applied, wanted)
@@ -179,6 +194,9 @@ class Session:
         if Live.PINS in changed:
             pins = styles.pinned_vertices(self.weights, settings.pin_group)
             check_pins(self.obj, pins, self.arrays.triangles)
+        if Live.SETTER in changed:
+            for field in schema.SOLVER_SETTERS:
+                setattr(solver, field.name, field.read(settings))
         # Never let face indices point past the style list, in either order.
         if new_styles is not None and len(new_styles) >= len(self.applied["styles"]):
             solver.set_styles(new_styles)
@@ -187,11 +205,27 @@ class Session:
             solver.set_face_styles(faces)
         if new_styles is not None:
             solver.set_styles(new_styles)
-        if pins is not None:
+        if pins is None:
+            return
+        if self.background_pins:  # last: the solver is not to be touched until it is done
+            self._pin_group_before = self.applied["pin_group"]
+            self.pins_setup = PinsSetup(self, pins)
+        else:
             solver.set_pins(pins)
-        if Live.SETTER in changed:
-            for field in schema.SOLVER_SETTERS:
-                setattr(solver, field.name, field.read(settings))
+
+    def _finish_pins(self):
+        """Once a PinsSetup is done: None, or why it failed (the solver keeps its old pins, and the
+        next sync tries the Pin Group again)."""
+        setup, self.pins_setup = self.pins_setup, None
+        if setup is None or not isinstance(setup.results[0], Exception):
+            return None
+        self.applied = dict(self.applied, pin_group=self._pin_group_before)
+        return str(setup.results[0])
+
+    def _stop_pins(self):
+        if self.pins_setup is not None:
+            self.pins_setup.cancel()
+            self.pins_setup = None
 
     def step(self, count=1):
         """Run ``count`` solver iterations and write the result to the target."""
@@ -215,6 +249,7 @@ class Session:
 
     def keep(self):
         """Keep the result; remember the start coordinates for the Reset operator."""
+        self._stop_pins()  # a Pin Group change still being prepared never reached the result
         rest_store.capture(self.mesh, self.arrays.coords, self.target.kind)
 
     def cancel(self):
@@ -224,6 +259,7 @@ class Session:
         another object may share it, and undo reuses the mesh as it is in memory.
         A freed mesh, or one whose vertex count changed, is left alone.
         """
+        self._stop_pins()
         if self.mesh_alive():
             self.target.restore()
 

@@ -56,14 +56,21 @@ def find_sidebar_field(data_path):
             return
     ui = view3d()[1]['UI']
     x = ui.x + ui.width // 2 + 20  # the value column of a property row
-    rows = []
-    for y in range(ui.y + ui.height - 10, ui.y, -6):  # rows are 20 pixels high at scale 1
-        if rows and rows[-1] != y + 6:
-            break  # past the row
+    row = int(18 * bpy.context.preferences.system.ui_scale)  # a little less than a row's height
+    hit = None
+    for y in range(ui.y + ui.height - row // 2, ui.y, -row):  # every row is hit once
         yield from _property_under_mouse(x, y)
         if found["path"] == data_path:
-            rows.append(y)
-    found["at"] = found[data_path] = (x, rows[len(rows) // 2]) if rows else None
+            hit = y
+            break
+    if hit is not None:  # the row's middle: the median of the points around the hit that are on it
+        on_row = [hit]
+        for y in range(hit - row, hit + row + 1, 3):
+            yield from _property_under_mouse(x, y)
+            if found["path"] == data_path:
+                on_row.append(y)
+        hit = sorted(on_row)[len(on_row) // 2]
+    found["at"] = found[data_path] = (x, hit) if hit is not None else None
 
 
 found = {}
