@@ -35,6 +35,10 @@ def stylize_problem(context):
         return problem
     if runs.is_running(active):
         return "Stylization is already running on this object"
+    if runs.live_runs():
+        # One live run at a time: a second one would keep undo off when the first is kept,
+        # so that run's undo step would be lost. One run takes every selected mesh anyway.
+        return "Stylize is already running on other objects; keep (Enter) or cancel (Esc) it first"
     return None
 
 

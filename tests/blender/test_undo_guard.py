@@ -103,3 +103,18 @@ def test_disabling_the_addon_ends_runs_and_gives_undo_back(addon, preferences):
         assert run.stopped == [False] and preferences.edit.undo_steps == USER_STEPS
     finally:
         addon.register()
+
+
+def test_a_second_stylize_waits_for_the_live_run(addon, preferences):
+    # Were two runs live, keeping one would push its undo step while undo is still off for the
+    # other, and that step would be lost.
+    run = _Run()
+    addon.runs.start([helpers.uv_sphere()], run)
+    try:
+        helpers.suzanne(levels=0)
+        assert not bpy.ops.object.gauss_stylize.poll()
+        with pytest.raises(RuntimeError, match="already running on other objects"):
+            bpy.ops.object.gauss_stylize(iterations=1)
+    finally:
+        addon.runs.forget(run)
+    assert bpy.ops.object.gauss_stylize.poll()
