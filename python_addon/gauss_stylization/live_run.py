@@ -187,10 +187,14 @@ class LiveRun:
         """A set-up the run waits for besides the first one (new pins being prepared), or None."""
         return next((session.busy for session in self.sessions if session.busy is not None), None)
 
+    def panel_title(self):
+        """The sidebar box's first row: "Preparing... 40%" or "Stylizing live"."""
+        return progress_text("Preparing", self.setup.fraction) if self.preparing else "Stylizing live"
+
     def panel_lines(self):
-        """(text, icon) rows for the sidebar: what runs and how far it is."""
+        """(text, icon) rows for the sidebar under the title: each object and how far it is."""
         if self.preparing:
-            return [(progress_text(self.setup.text(), self.setup.fraction), 'TIME')]
+            return [(plan.name, 'MESH_DATA') for plan in self.planned.plans]
         lines = []
         for session in self.sessions:
             busy = session.busy

@@ -117,6 +117,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         if live.preparing:
             if not live.setup.done:
                 self._progress.update(live.setup.fraction, live.setup.text())
+                self._redraw(context)
                 self.show_status(context)
                 return {'PASS_THROUGH'}
             self._progress.end()
@@ -145,13 +146,17 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             self.stop(context, keep=False)
             return {'CANCELLED'}
         self._show_busy(context)
-        now = time.monotonic()
-        panels = now - self._panels_drawn > PANEL_SECONDS  # the step count in the sidebar
-        if panels:
-            self._panels_drawn = now
-        redraw_viewports(context, sidebars=panels)
+        self._redraw(context)
         self.show_status(context)
         return {'PASS_THROUGH'}  # other operators may own this timer event
+
+    def _redraw(self, context):
+        """The viewports at every tick, their sidebars (steps, progress) a few times a second."""
+        now = time.monotonic()
+        sidebars = now - self._panels_drawn > PANEL_SECONDS
+        if sidebars:
+            self._panels_drawn = now
+        redraw_viewports(context, sidebars=sidebars)
 
     def _show_busy(self, context):
         """Progress of new pins being prepared (shown, like the set-up's, after half a second)."""

@@ -97,7 +97,7 @@ class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
 def _draw_run_state(layout, run):
     """What a live run does: its objects and steps (or its set-up), and the keys that end it."""
     box = layout.box().column(align=True)
-    box.label(text="Preparing" if run.preparing else "Stylizing live", icon='TIME')
+    box.label(text=run.live.panel_title(), icon='TIME')
     for text, icon in run.live.panel_lines():
         box.label(text=text, icon=icon)
     for hint in (operators.SETUP_HINT,) if run.preparing else operators.KEY_HINTS:

@@ -9,8 +9,10 @@ The summary goes to BUILD_DIR/screenshots/windowed_live_run_result.txt.
 """
 
 import os
+import re
 import sys
 import tempfile
+import threading
 import time
 
 import bpy
@@ -337,6 +339,62 @@ def region_group_deleted(name):
     yield from kit.end_with('ESC', "Esc then restores the mesh bit-exactly", name, original)
 
 
+# -- a big set-up (issue 12: progress while it sets up) --------------------------------------
+
+def big_set_up_esc(name):
+    """A 360K-vertex mesh: the set-up shows its progress, Blender stays responsive, Esc cancels
+    it at once and nothing has changed."""
+    if not hasattr(addon().native.core(), "Progress"):  # set-ups that report and cancel: issue 12's module
+        print("big_set_up_esc: skipped, this gauss_core has no Progress", flush=True)
+        return
+    import bmesh
+    bm = bmesh.new()
+    bmesh.ops.create_grid(bm, x_segments=600, y_segments=600, size=2.0)
+    mesh = bpy.data.meshes.new("Big")
+    bm.to_mesh(mesh)
+    bm.free()
+    big = bpy.data.objects.new("Big", mesh)
+    big.display_type = 'BOUNDS'  # drawing 360K faces in software would be what keeps the window busy
+    big.location.x = -3.0
+    bpy.context.scene.collection.objects.link(big)
+    activate(big)
+    original, undo_steps = coords(big), _undo_steps()
+    kit.start_live_run()
+    yield 1.0
+    op = live_operator()
+    check("a big mesh is prepared before it runs", op is not None and op.preparing,
+          "preparing %s" % (op.preparing if op else None))
+    area = view3d()[0]
+    path = os.path.join(kit.SHOTS, "preparing.png")
+    with bpy.context.temp_override(window=window(), area=area):
+        bpy.ops.screen.screenshot(filepath=path)  # the status bar says "Preparing ... %"
+    text = op.live.status_text() if op is not None else ""
+    check("the status bar says how far the set-up is", re.search(r"Preparing [\d,]+ vertices\.\.\. \d+%", text),
+          repr(text))
+    seen, began = [], time.monotonic()  # what the driver (Python on Blender's main thread) sees meanwhile
+    while (time.monotonic() - began < 8.0 and len(set(seen)) < 2 and live_operator() is not None
+           and live_operator().preparing):
+        seen.append(live_operator().live.setup.fraction)
+        yield 0.05
+    check("Blender stays responsive while it prepares (the main thread runs between the set-up's steps)",
+          len(set(seen)) >= 2 and seen == sorted(seen), "fractions seen: %s" % seen)
+    op = live_operator()
+    check("... and is still preparing when Esc is pressed", op is not None and op.preparing)
+    asked = time.monotonic()
+    press('ESC', *viewport_point())
+    yield from wait_stopped()
+    check("Esc during the set-up ends the run at once", live_operator() is None and time.monotonic() - asked < 5.0,
+          "%.1f s" % (time.monotonic() - asked))
+    state = (np.array_equal(coords(bpy.data.objects["Big"]), original), _undo_steps() == undo_steps,
+             not [t for t in threading.enumerate() if t.name == "Gauss Stylize set-up"],
+             len(bpy.data.objects["Big"].gauss_stylization.styles) == 0)
+    check("... leaving nothing changed and nothing running (mesh, undo steps, no thread, no style added)",
+          all(state), str(state))
+    bpy.data.objects.remove(bpy.data.objects["Big"])
+    bpy.data.meshes.remove(mesh)
+    activate(bpy.data.objects[name])
+
+
 # -- undo steps given back on every ending (issue 14 item 1) ----------------------------------
 
 def addon():
@@ -444,7 +502,7 @@ def make_other(name):
 
 SCENARIOS = ("sigma_and_move_during_a_kept_run", "sigma_and_move_during_a_cancelled_run",
              "gizmo_and_header_clicks", "outliner_selection", "several_objects", "region_group_deleted",
-             "undo_steps_given_back", "file_loaded_mid_run")  # the last replaces the whole file
+             "big_set_up_esc", "undo_steps_given_back", "file_loaded_mid_run")  # the last replaces the whole file
 
 
 def scenario():
