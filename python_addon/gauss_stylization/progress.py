@@ -17,8 +17,7 @@ import time
 
 import bpy
 
-SHOW_AFTER = 0.5         # seconds before anything is shown
-REDRAW_EVERY = 0.25      # seconds between status-bar redraws of a job that blocks the interface
+SHOW_AFTER = 0.5  # seconds before anything is shown
 
 
 def progress_text(text, fraction=None):
@@ -31,20 +30,20 @@ def progress_text(text, fraction=None):
 class ProgressReport:
     """title: what the job is, leads every status text and printed line.
     status:   show the text in the status bar (False when the caller writes the status itself).
-    blocking: the job holds the interface (an operator's execute), so the status bar is
-              redrawn explicitly now and then; a modal operator's job never blocks."""
 
-    def __init__(self, context, title, status=True, blocking=False):
+    A job that holds the interface (an operator's execute: a script, the redo panel) shows
+    the progress indicator on the mouse cursor, which needs no redraw; its status text only
+    appears when the window is drawn again. (Forcing a redraw from inside an operator with
+    wm.redraw_timer crashed Blender 3.4 under test, so it is not done.)"""
+
+    def __init__(self, context, title, status=True):
         self.title = title
         self.window_manager = context.window_manager
         self.workspace = context.workspace if status else None
-        self.window = context.window
         self.background = bpy.app.background
-        self.blocking = blocking and not self.background and context.window is not None
         self.started = time.monotonic()
         self.shown = False
         self.printed_tenth = -1
-        self.redrawn = 0.0
         self.text = ""
 
     def __enter__(self):
@@ -77,15 +76,6 @@ class ProgressReport:
         self.window_manager.progress_update(0 if fraction is None else 100.0 * fraction)
         if self.workspace is not None:
             self.workspace.status_text_set("%s: %s" % (self.title, self.text))
-            self._redraw()
-
-    def _redraw(self):
-        # A job inside execute() holds the event loop, so the status bar would not show the
-        # text until it ends; redrawing the window now and then is the only way to show it.
-        if self.blocking and time.monotonic() - self.redrawn > REDRAW_EVERY:
-            self.redrawn = time.monotonic()
-            with bpy.context.temp_override(window=self.window):
-                bpy.ops.wm.redraw_timer(type='DRAW_WIN', iterations=1)
 
     def end(self):
         """Take the indicator and text away (safe to call more than once)."""

@@ -52,7 +52,7 @@ def _advance(session, count, report, done, total):
 def run(operator, context, planned, steps):
     """Run every planned object ``steps`` steps (None: each object's Script Steps), keep what
     succeeded and report the rest. Returns the operator's result."""
-    with ProgressReport(context, TITLE, blocking=True) as report:
+    with ProgressReport(context, TITLE) as report:
         sessions, failed = _set_up(planned, report)
         counts = [steps if steps is not None else session.obj.gauss_stylization.iterations
                   for session in sessions]

@@ -395,6 +395,35 @@ def big_set_up_esc(name):
     activate(bpy.data.objects[name])
 
 
+def scripted_run_in_a_window(name):
+    """A run that holds the window (a script, the redo panel) shows Blender's progress indicator
+    (on the mouse cursor) and sets the status text; afterwards both are gone."""
+    progress = addon().progress
+    shown = []
+    real_update = progress.ProgressReport.update
+
+    def update(report, fraction, text):
+        real_update(report, fraction, text)
+        shown.append((report.shown, report.workspace is not None, fraction))
+
+    progress.ProgressReport.update = update
+    saved, progress.SHOW_AFTER = progress.SHOW_AFTER, 0.0  # every run counts as long here
+    try:
+        activate(bpy.data.objects[name])
+        original = coords(bpy.data.objects[name])
+        with kit.override():
+            result = bpy.ops.object.gauss_stylize('EXEC_DEFAULT', True, iterations=30)
+    finally:
+        progress.SHOW_AFTER = saved
+        progress.ProgressReport.update = real_update
+    yield 0.3
+    check("a scripted run in the window shows its progress (indicator and status text)",
+          result == {'FINISHED'} and shown and all(s[0] and s[1] for s in shown) and shown[-1][2] == 1.0
+          and not np.array_equal(coords(bpy.data.objects[name]), original), str(shown[-3:]))
+    yield from key('Z', ctrl=True)
+    check("... and is one undo step", np.array_equal(coords(bpy.data.objects[name]), original))
+
+
 # -- undo steps given back on every ending (issue 14 item 1) ----------------------------------
 
 def addon():
@@ -502,7 +531,8 @@ def make_other(name):
 
 SCENARIOS = ("sigma_and_move_during_a_kept_run", "sigma_and_move_during_a_cancelled_run",
              "gizmo_and_header_clicks", "outliner_selection", "several_objects", "region_group_deleted",
-             "big_set_up_esc", "undo_steps_given_back", "file_loaded_mid_run")  # the last replaces the whole file
+             "big_set_up_esc", "scripted_run_in_a_window", "undo_steps_given_back",
+             "file_loaded_mid_run")  # the last replaces the whole file
 
 
 def scenario():
