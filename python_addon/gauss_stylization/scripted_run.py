@@ -3,9 +3,9 @@
 The solvers of all objects are set up first (on a worker thread, progress
 shown meanwhile), then each object runs its steps. Steps go in chunks of about
 CHUNK_SECONDS, and at most a tenth of the run, so progress can be shown between
-them; chunking does not change the result (n steps are n steps). An object that cannot be set up or fails
-while stepping is restored and skipped with a message naming it; the others
-are kept. The operator's one undo step covers them all.
+them; chunking does not change the result (n steps are n steps). An object that
+cannot be set up or fails while stepping is restored and skipped with a message
+naming it; the others are kept. The operator's one undo step covers them all.
 """
 
 import time
