@@ -2,7 +2,7 @@
 
 Module state, because modal operators live outside RNA. A run is the modal
 operator itself (operators.OBJECT_OT_gauss_stylize); all this module asks of
-it is ``stop(context, keep=False)`` and ``report(...)``.
+it is ``stop(context, keep=False)``, ``report(...)`` and ``sessions``.
 
 Undo is suspended while any run is live (undo_guard): from the moment the first
 run registers until the last one is forgotten. Every way a run ends goes
@@ -38,6 +38,20 @@ def run_of(obj):
 def live_runs():
     """Every live run, once each, in the order they started."""
     return list(dict.fromkeys(running.values()))
+
+
+def session_of(obj):
+    """The session.Session stylizing ``obj`` in a live run; None if there is none (or its
+    solver is still being set up)."""
+    run = run_of(obj)
+    if run is None:
+        return None
+    return next((session for session in run.sessions if session.obj == obj), None)
+
+
+def live_sessions():
+    """The sessions of every live run (one per object being stylized)."""
+    return [session for run in live_runs() for session in run.sessions]
 
 
 def forget(run):

@@ -176,3 +176,25 @@ def test_live_run_cancelled_while_preparing_changes_nothing(addon):
     assert live.setup is None
     assert len(a.gauss_stylization.styles) == 0 and len(b.gauss_stylization.styles) == 0
     assert np.array_equal(helpers.coords(a), starts[0]) and np.array_equal(helpers.coords(b), starts[1])
+
+
+def test_each_object_of_a_live_run_finds_its_own_session(addon):
+    # For features that work on the object under the mouse (pin handles, the sphere overlay).
+    a, b = _pair(levels=0)
+    live = _live(addon, [b, a])
+
+    class Run:
+        sessions = live.sessions
+
+        def stop(self, context, keep):
+            live.cancel()
+
+    run = Run()
+    addon.runs.start([b, a], run)
+    try:
+        assert addon.runs.session_of(a).obj == a and addon.runs.session_of(b).obj == b
+        assert [s.obj for s in addon.runs.live_sessions()] == [b, a]
+        assert addon.runs.session_of(helpers.uv_sphere()) is None
+    finally:
+        addon.runs.forget(run)
+        live.cancel()
