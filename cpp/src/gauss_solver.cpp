@@ -9,6 +9,7 @@
 
 #include "gauss/closest_rotation.h"
 #include "gauss/cotangent_weights.h"
+#include "gauss/memory_budget.h"
 #include "gauss/normal_step.h"
 #include "gauss/parallel.h"
 #include "gauss/presets.h"
@@ -22,6 +23,10 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using Clock = std::chrono::steady_clock;
 
+// Memory the solver keeps per face (topology, rest quantities, ADMM buffers, edges) and per vertex,
+// rounded down from its members' sizes, for the early memory check.
+constexpr int64_t kSetupBytesPerFace = 400, kSetupBytesPerVertex = 200;
+
 double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
@@ -30,10 +35,17 @@ double ms_since(Clock::time_point t) {
 
 GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, int num_faces,
                          const std::vector<int64_t>& pinned, const double* pin_positions,
-                         double lambda) {
+                         double lambda, Progress* watcher) {
+  Progress unwatched;
+  Progress& progress = watcher ? *watcher : unwatched;
+  progress.start(SetupPhase::topology);
   if (num_vertices <= 0) throw std::invalid_argument("the mesh has no vertices");
   if (num_faces <= 0) throw std::invalid_argument("the mesh has no faces");
   settings::lambda.check(lambda);
+  // The per-face and per-vertex arrays alone (a lower bound; the factor is checked once its size is
+  // known): a mesh far too big for the machine is refused before anything is allocated.
+  check_memory(kSetupBytesPerFace * int64_t{num_faces} + kSetupBytesPerVertex * int64_t{num_vertices},
+               "a mesh of " + std::to_string(num_vertices) + " vertices and " + std::to_string(num_faces) + " faces");
   for (int i = 0; i < 3 * num_vertices; ++i)
     if (!std::isfinite(V[i])) {
       std::ostringstream msg;
@@ -53,7 +65,9 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   std::vector<int64_t> faces(3 * static_cast<size_t>(num_faces));
   for (int f = 0; f < num_faces; ++f)
     for (int k = 0; k < 3; ++k) faces[3 * f + k] = new_of_old_[F[3 * face_order[f] + k]];
-  topo_ = build_mesh_topology(num_vertices, faces.data(), num_faces);
+  progress.check();
+  topo_ = build_mesh_topology(num_vertices, faces.data(), num_faces, &progress);
+  progress.enter(SetupPhase::weights);
   for (int& f : topo_.input_face) f = face_order[f];
   num_input_faces_ = num_faces;
   lambda_ = lambda;
@@ -87,6 +101,7 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   X_ = rest_;
 
   compute_rest_quantities();
+  progress.check();
   const int nF = static_cast<int>(topo_.faces.size());
   normal_star_.assign(nF, Vector3d::UnitZ());
   dual_.assign(nF, {0, 0, 0});
@@ -99,7 +114,8 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
 
   styles_.emplace_back(default_style());
   face_style_.assign(nF, 0);
-  set_pins(pinned, pin_positions);
+  apply_pins(pinned, pin_positions, progress);
+  progress.finish();
 }
 
 void GaussSolver::compute_rest_quantities() {

@@ -101,11 +101,21 @@ std::vector<Vector3d> GaussSolver::to_solver_frame(const std::vector<Vector3d>& 
   return out;
 }
 
-void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin_positions) {
+void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress* watcher) {
+  Progress unwatched;
+  Progress& progress = watcher ? *watcher : unwatched;
+  progress.start(SetupPhase::ordering);
+  apply_pins(pinned, pin_positions, progress);
+  progress.finish();
+}
+
+void GaussSolver::apply_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress& progress) {
   std::vector<Vector3d> targets = checked_pin_targets(pinned, pin_positions);
   std::vector<int64_t> internal(pinned.size());
   for (size_t i = 0; i < pinned.size(); ++i) internal[i] = new_of_old_[pinned[i]];
-  laplacian_ = ConstrainedLaplacian(topo_, edge_weight_, rest_, internal, to_solver_frame(targets));
+  // Built aside and then moved in: if the factorization throws (Cancelled, OutOfMemory, not positive
+  // definite), the solver keeps its previous pins and factor.
+  laplacian_ = ConstrainedLaplacian(topo_, edge_weight_, rest_, internal, to_solver_frame(targets), &progress);
   ++factorization_count_;
   pinned_input_ = pinned;
   pin_targets_ = std::move(targets);

@@ -22,6 +22,7 @@
 #include "gauss/constrained_laplacian.h"
 #include "gauss/mesh_topology.h"
 #include "gauss/preference_function.h"
+#include "gauss/progress.h"
 #include "gauss/settings.h"
 #include "gauss/thread_tuner.h"
 
@@ -40,10 +41,12 @@ class GaussSolver {
   // +-settings::max_coordinate); F: num_faces by 3 row-major vertex indices.
   // pinned: #P distinct vertex indices; pin_positions: #P by 3 targets (nullptr: the rest positions),
   // within settings::max_pin_distance times the mesh's size of it. lambda: settings::lambda.
-  // Throws std::invalid_argument on bad input (message says what is wrong).
+  // progress: optional; reports every SetupPhase (progress.h) and cancels the set-up on request.
+  // Throws std::invalid_argument on bad input (message says what is wrong), OutOfMemory
+  // (memory_budget.h) if the factorization would not fit in memory, Cancelled.
   GaussSolver(const double* V, int num_vertices, const int64_t* F, int num_faces,
               const std::vector<int64_t>& pinned = {}, const double* pin_positions = nullptr,
-              double lambda = settings::lambda.default_value);
+              double lambda = settings::lambda.default_value, Progress* progress = nullptr);
 
   // --- Styles: take effect at the next step, never re-factor. ---
   // Default: one style, default_style() (presets.h), on every face.
@@ -56,8 +59,11 @@ class GaussSolver {
   // --- Parameters: lambda only scales Eq. 27's right-hand side, so only set_pins() re-factors. ---
   void set_lambda(double lambda);
   double lambda() const { return lambda_; }
-  // A new set of pins (as in the constructor); re-factors. The pins move to their targets now.
-  void set_pins(const std::vector<int64_t>& pinned, const double* pin_positions = nullptr);
+  // A new set of pins (as in the constructor); re-factors (progress: SetupPhase::ordering onwards).
+  // The pins move to their targets now. On any exception, Cancelled included, the solver keeps its
+  // previous pins and factor.
+  void set_pins(const std::vector<int64_t>& pinned, const double* pin_positions = nullptr,
+                Progress* progress = nullptr);
   // New targets for the current pins, without re-factoring: pin_positions is count by 3, in the order
   // of pinned(), count == #P, each target finite and within settings::max_pin_distance mesh sizes. The pins
   // move to their targets now; the rest of the mesh follows at the next step. Throws
@@ -87,6 +93,8 @@ class GaussSolver {
 
  private:
   void compute_rest_quantities();
+  // set_pins' work inside a set-up that `progress` already reports (the constructor's or set_pins').
+  void apply_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress& progress);
   void face_pass();
   void fit_rotations();  // rotation_ from face_cov_
   void admm_round(bool first_round);
