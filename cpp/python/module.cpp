@@ -20,6 +20,7 @@
 #include "gauss/presets.h"
 #include "gauss/progress.h"
 #include "gauss/settings.h"
+#include "module_facts.h"
 #include "numpy_arrays.h"
 
 namespace py = pybind11;
@@ -28,6 +29,7 @@ using gauss::GaussSolver;
 using gauss::PreferenceFunction;
 using gauss::StyleParams;
 using gauss_python::as_array;
+using gauss_python::parse_method;
 using gauss_python::eval_points;
 using gauss_python::read_matrix;
 using gauss_python::read_rotation;
@@ -61,7 +63,10 @@ class Solver {
   // Inputs are copied while the GIL is held; the set-up itself runs without it, so another Python
   // thread (Blender's UI timer) can watch or cancel the progress meanwhile.
   Solver(const py::object& V, const py::object& F, const py::object& pinned, const py::object& pin_positions,
-         double lam, int admm_iterations, const py::object& progress) {
+         double lam, int admm_iterations, const std::string& method, double cubic_lambda,
+         const py::object& progress) {
+    const gauss::Method chosen = parse_method(method);  // refused before the set-up's cost
+    settings::cubic_lambda.check(cubic_lambda);
     std::vector<double> v = read_matrix<double>(V, 3, "V", false);
     std::vector<int64_t> f = read_matrix<int64_t>(F, 3, "F", true);
     std::vector<int64_t> pins;
@@ -80,6 +85,8 @@ class Solver {
       }
     }
     solver_->set_admm_iterations(admm_iterations);
+    solver_->set_cubic_lambda(cubic_lambda);
+    solver_->set_method(chosen);
     styles_.push_back(make_style(settings::default_preset, gauss::default_style()));
   }
 
@@ -199,26 +206,7 @@ class Solver {
 PYBIND11_MODULE(gauss_core, m) {
   m.doc() = "Gauss stylization (Kohlbrenner et al. 2021): ARAP with preferred face normals.";
 
-  py::list presets;
-  for (const std::string& n : gauss::preset_names()) presets.append(n);
-  m.attr("PRESETS") = py::tuple(presets);
-  py::dict defaults, limits;
-  for (const gauss::Setting* setting : settings::all) {
-    if (setting->integer) {
-      defaults[setting->name] = static_cast<long>(setting->default_value);
-      limits[setting->name] = py::make_tuple(static_cast<long>(setting->min), static_cast<long>(setting->max));
-    } else {
-      defaults[setting->name] = setting->default_value;
-      limits[setting->name] = py::make_tuple(setting->min, setting->max);
-    }
-  }
-  defaults["preset"] = settings::default_preset;
-  m.attr("DEFAULTS") = defaults;
-  m.attr("LIMITS") = limits;
-  py::dict sizes;
-  sizes["normals"] = settings::max_style_normals;
-  sizes["rings"] = settings::max_style_rings;
-  m.attr("SIZE_LIMITS") = sizes;
+  gauss_python::export_facts(m);
 
   m.def("merge_directions", [](const py::object& normals, double max_angle_degrees, const py::object& weights) {
         std::vector<double> n = read_matrix<double>(normals, 3, "normals", false);
@@ -417,20 +405,23 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
 Gauss stylization of one triangle mesh. The constructor does the set-up (normalization, cotangent
 weights, topology, sparse Cholesky factorization); step() runs Algorithm 1 of the paper.
 
-Solver(V, F, pinned=None, pin_positions=None, lam, admm_iterations, progress=None)
+Solver(V, F, pinned=None, pin_positions=None, lam, admm_iterations, method, cubic_lambda, progress=None)
   (defaults and ranges: DEFAULTS, LIMITS)
   V: (#V, 3) float32/float64 coordinates.  F: (#F, 3) int32/int64 triangle indices.
   pinned: (#P,) vertex indices that keep their position; pin_positions: (#P, 3) targets
   (default: their rest positions).  lam: lambda.  admm_iterations: ADMM rounds per step.
+  method: one of METHODS, any case ('gauss': this paper; 'cubic': Cubic Stylization, whose strength is
+  cubic_lambda, scaled per face by its style's mu and turned by its style's rotation).
   progress: a gauss_core.Progress to watch or cancel the set-up from another thread (the
   set-up releases the GIL); a cancelled set-up raises gauss_core.Cancelled.
 Raises MemoryError if the mesh's factorization would not fit in the available memory.
 By default one style, DEFAULTS['preset'] with the default sigma and mu, applies to every face.)doc")
       .def(py::init<const py::object&, const py::object&, const py::object&, const py::object&, double, int,
-                    const py::object&>(),
+                    const std::string&, double, const py::object&>(),
            py::arg("V"), py::arg("F"), py::arg("pinned") = py::none(), py::arg("pin_positions") = py::none(),
            py::arg("lam") = settings::lambda.default_value,
            py::arg("admm_iterations") = static_cast<int>(settings::admm_iterations.default_value),
+           py::arg("method") = settings::default_method, py::arg("cubic_lambda") = settings::cubic_lambda.default_value,
            py::arg("progress") = py::none())
       .def("set_styles", &Solver::set_styles, py::arg("styles"),
            "Replaces the style list (takes effect at the next step, no re-factorization).")
@@ -454,6 +445,17 @@ By default one style, DEFAULTS['preset'] with the default sigma and mu, applies 
       .def_property("admm_iterations", [](Solver& s) { return s.core().admm_iterations(); },
                     [](Solver& s, int n) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_admm_iterations(n); },
                     "ADMM rounds per step (range: LIMITS['admm_iterations']).")
+      .def_property("method", [](Solver& s) { return settings::method_names[static_cast<int>(s.core().method())]; },
+                    [](Solver& s, const std::string& m) { const gauss::Method chosen = parse_method(m);
+                      std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_method(chosen); },
+                    "The next step's method (METHODS); switching keeps pins, styles and the factorization.")
+      .def_property("cubic_lambda", [](Solver& s) { return s.core().cubic_lambda(); },
+                    [](Solver& s, double l) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_cubic_lambda(l); },
+                    "lambda of the cubic method (range: LIMITS['cubic_lambda']).")
+      .def_property_readonly("cubic_admm_iterations", [](Solver& s) { return s.core().cubic_admm_iterations(); },
+                             "ADMM iterations of the last cubic step, summed over the vertices.")
+      .def_property_readonly("cubic_energy", [](Solver& s) { std::lock_guard<std::mutex> lock(s.mutex());
+                               return s.core().cubic_energy(); }, "sum_i lambda_i |Q_i^T R_i n_i|_1 of the last cubic step.")
       .def("step", &Solver::step, py::arg("n") = 1, "Runs n iterations (releases the GIL).")
       .def("reset", [](Solver& s) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().reset(); },
            "Current vertices := rest vertices; step_count := 0.")

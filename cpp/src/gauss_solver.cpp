@@ -239,7 +239,7 @@ void GaussSolver::admm_round(bool first_round) {
   });
 }
 
-void GaussSolver::assemble_rhs() {
+void GaussSolver::assemble_rhs(bool with_edges) {
   const int nF = static_cast<int>(topo_.faces.size());
   const double lam = lambda_, inv = 1.0 / (1.0 + lambda_);
   parallel::for_each(nF, parallel::kMinParallelItems, [&](int f) {
@@ -249,8 +249,10 @@ void GaussSolver::assemble_rhs() {
     const Matrix3d Rf = (rotation_[t[0]] + rotation_[t[1]] + rotation_[t[2]]) * (1.0 / 3.0);
     Vector3d d[3];
     for (int k = 0; k < 3; ++k) {
+      d[k] = Rf * slot_rest_[f][k];
+      if (!with_edges) continue;  // the cubic method: plain ARAP's global step
       const double s = topo_.face_edge_sign[f][k];
-      d[k] = (Rf * slot_rest_[f][k] + (lam * slot_weight_[f][k] * s) * edge_star_[topo_.face_edge[f][k]]) * inv;
+      d[k] = (d[k] + (lam * slot_weight_[f][k] * s) * edge_star_[topo_.face_edge[f][k]]) * inv;
     }
     // Corner k is the head of slot k-1 and the tail of slot k.
     for (int k = 0; k < 3; ++k) corner_rhs_[f][k] = d[(k + 2) % 3] - d[k];
@@ -271,18 +273,27 @@ void GaussSolver::step() {
   const parallel::ScopedThreads scoped(threads);
   const auto start = Clock::now();
   auto t0 = start;
-  face_pass();
-  timings_.faces = ms_since(t0);
-  t0 = Clock::now();
-  fit_rotations();
-  timings_.rotations = ms_since(t0);
-  t0 = Clock::now();
-  // The last round's dual update is skipped: duals are re-initialized at the next step and the
-  // global step does not read them.
-  for (int r = 0; r < admm_iterations_; ++r) admm_round(r == 0);
+  const bool gauss = method_ == Method::gauss;
+  if (gauss) {
+    face_pass();
+    timings_.faces = ms_since(t0);
+    t0 = Clock::now();
+    fit_rotations();
+    timings_.rotations = ms_since(t0);
+    t0 = Clock::now();
+    // The last round's dual update is skipped: duals are re-initialized at the next step and the
+    // global step does not read them.
+    for (int r = 0; r < admm_iterations_; ++r) admm_round(r == 0);
+  } else {
+    cubic_.covariances(topo_, X_);
+    timings_.faces = ms_since(t0);
+    timings_.rotations = 0;
+    t0 = Clock::now();
+    cubic_.fit(topo_, cubic_lambda_, rotation_, rotation_q_);
+  }
   timings_.admm = ms_since(t0);
   t0 = Clock::now();
-  assemble_rhs();
+  assemble_rhs(gauss);
   timings_.rhs = ms_since(t0);
   t0 = Clock::now();
   laplacian_.solve(X_);
@@ -296,6 +307,7 @@ void GaussSolver::reset() {
   X_ = rest_;
   // The rotation warm start is state too: a reset run must repeat the first run bit for bit.
   std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
+  if (cubic_ready_) cubic_.reset();
   laplacian_.place_pins(X_);
   step_count_ = 0;
 }

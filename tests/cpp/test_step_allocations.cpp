@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <new>
 
+#include <Eigen/Geometry>
+
 #include "gauss/cholesky_solver.h"
 #include "gauss/gauss_solver.h"
 #include "gauss/presets.h"
@@ -51,6 +53,17 @@ TEST(StepAllocations, StepsDoNotAllocate) {
   const long before_copy = g_allocations.load();
   s.copy_vertices(out.data());
   EXPECT_EQ(g_allocations.load() - before_copy, 0);
+  // The cubic method: preparing it may allocate, its steps may not (two styles, one turned, an
+  // unstyled face, pins: every branch of its ADMM).
+  s.set_method(gauss::Method::cubic);
+  gauss::StyleParams turned = gauss::preset_style("cube");
+  turned.rotation = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  s.set_style(1, gauss::PreferenceFunction(turned));
+  for (int i = 0; i < 3; ++i) s.step();
+  const long before_cubic = g_allocations.load();
+  for (int i = 0; i < 5; ++i) s.step();
+  EXPECT_EQ(g_allocations.load() - before_cubic, 0);
+  EXPECT_GT(s.cubic_admm_iterations(), 0);
 }
 
 TEST(StepAllocations, CholeskySolveDoesNotAllocate) {

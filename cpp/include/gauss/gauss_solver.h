@@ -10,6 +10,10 @@
 //   for (...) s.step();                  // no allocation, no sparse look-up, no factorization
 //   s.copy_vertices(out);
 //
+// A second method shares all of that: Cubic Stylization (Liu & Jacobson 2019), whose local step
+// (cubic_local_step.h) replaces the ADMM on normals and edges; set_method() switches between them at
+// any time, without a new set-up.
+//
 // Frames: the solver works on a normalized copy (vertex centroid at the origin, longest bounding-box
 // side 1) so that lambda, sigma and mu mean what they mean in the paper; inputs and outputs are in
 // the caller's frame.
@@ -20,6 +24,7 @@
 #include <vector>
 
 #include "gauss/constrained_laplacian.h"
+#include "gauss/cubic_local_step.h"
 #include "gauss/mesh_topology.h"
 #include "gauss/preference_function.h"
 #include "gauss/progress.h"
@@ -28,9 +33,14 @@
 
 namespace gauss {
 
+// The local step a step runs; the numbers are the positions in settings::method_names.
+enum class Method { gauss = 0, cubic = 1 };
+
 struct StepTimings {  // milliseconds spent in each phase of the last step
   // faces: initialization with the first ADMM round's normal update; admm: the edge update and any
   // later rounds; rhs: Eq. 27's right-hand side; solve: the triangular solves and re-centring.
+  // The cubic method: faces = the face covariances, admm = the per-vertex ADMM with its rotations,
+  // rotations = 0.
   double faces = 0, rotations = 0, admm = 0, rhs = 0, solve = 0;
   int threads = 1;  // threads the step ran on (see thread_tuner.h and parallel.h)
 };
@@ -74,6 +84,17 @@ class GaussSolver {
   void set_admm_iterations(int n);
   int admm_iterations() const { return admm_iterations_; }
 
+  // --- Method: the next step's local step; pins, styles and the factorization stay. ---
+  // The first switch to Method::cubic prepares its per-vertex data (O(#V), no factorization). With it,
+  // a style's mu scales cubic_lambda on its faces and its rotation turns the cube; its preferred
+  // normals, sigma and lambda are not used. A vertex's strength is the mean mu of its faces
+  // (unstyled faces count 0), its orientation that of the style most of its faces have (ties: the
+  // lower style index).
+  void set_method(Method method);
+  Method method() const { return method_; }
+  void set_cubic_lambda(double lambda);  // settings::cubic_lambda
+  double cubic_lambda() const { return cubic_lambda_; }
+
   // One iteration of Algorithm 1.
   void step();
   // Current vertices := rest vertices (pins at their targets); step count := 0.
@@ -89,6 +110,10 @@ class GaussSolver {
   int num_vertices() const { return topo_.num_vertices; }
   int num_input_faces() const { return num_input_faces_; }
   const StepTimings& last_timings() const { return timings_; }
+  // The cubic method: ADMM iterations of the last step summed over the vertices (0 before one), and
+  // its term sum_i lambda_i ||Q_i^T R_i n_i||_1 with the last step's rotations.
+  long long cubic_admm_iterations() const { return cubic_ready_ ? cubic_.last_admm_iterations() : 0; }
+  double cubic_energy() const { return cubic_ready_ ? cubic_.cubic_energy(cubic_lambda_, rotation_) : 0.0; }
   long long factor_nonzeros() const { return laplacian_.factor_nonzeros(); }
 
  private:
@@ -98,7 +123,10 @@ class GaussSolver {
   void face_pass();
   void fit_rotations();  // rotation_ from face_cov_
   void admm_round(bool first_round);
-  void assemble_rhs();
+  // Eq. 27's right-hand side from rotation_; with_edges adds the Gauss method's lambda w e* terms.
+  void assemble_rhs(bool with_edges);
+  // The cubic method's per-vertex strength and orientation from styles_ and face_style_.
+  void update_cubic_styles();
   // The targets (caller's frame) of the given pins (#P, caller's numbering) from #P by 3 positions
   // (nullptr: the rest positions); throws unless the pins are distinct vertices and every target is
   // finite and within settings::max_pin_distance times the mesh's size of it.
@@ -131,6 +159,10 @@ class GaussSolver {
   // Parameters, constraints and the global step's system.
   double lambda_ = settings::lambda.default_value;
   int admm_iterations_ = static_cast<int>(settings::admm_iterations.default_value);
+  Method method_ = Method::gauss;
+  double cubic_lambda_ = settings::cubic_lambda.default_value;
+  CubicLocalStep cubic_;      // prepared by the first set_method(Method::cubic)
+  bool cubic_ready_ = false;
   std::vector<int64_t> pinned_input_;                // caller's numbering
   std::vector<Eigen::Vector3d> pin_targets_;         // caller's frame (returned verbatim)
   ConstrainedLaplacian laplacian_;                   // internal numbering, normalized frame
