@@ -86,6 +86,8 @@ class LiveRun:
                 self.paused[session] = problem
                 continue
             self.paused.pop(session, None)
+            if session.busy is not None:  # the sync began re-factoring for new pins: wait for it
+                continue
             try:
                 session.step()
             except (SettingsError, ValueError, RuntimeError) as exc:
