@@ -7,7 +7,10 @@ A tick gives every object at most one step, in turn, until the tick's time
 budget is used; the next tick goes on with the object after the last one
 stepped (round-robin), so with a short budget every object still advances
 equally. An object whose settings cannot run pauses (the others go on); an
-object that fails or disappears is restored and leaves the run.
+object that fails or disappears is restored and leaves the run. An object that
+has converged (its last step moved it by less than its Tolerance) is not
+stepped until a change of its settings, styles or pins makes its solver forget
+that, then it resumes by itself.
 """
 
 import time
@@ -20,14 +23,17 @@ from .solver_setup import SolverSetup
 from .targets import TITLE
 
 TICK_BUDGET = 1.0 / 30.0  # seconds of solver steps per tick before the rest wait for the next one
+CONVERGED = "Converged"  # status bar and panel: the object is not stepped until something changes
 
 
 class TickOutcome:
     """paused:  [(object name, why)] for objects that paused at this tick (each reason once)
-    stopped: [(session, why)] for objects restored and taken out of the run"""
+    stopped: [(session, why)] for objects restored and taken out of the run
+    stepped: how many objects took a step (0: nothing changed, nothing to redraw)"""
 
     def __init__(self):
         self.paused, self.stopped = [], []
+        self.stepped = 0
 
 
 class LiveRun:
@@ -37,6 +43,7 @@ class LiveRun:
         self.setup = SolverSetup(planned.plans)
         self.sessions = []
         self.paused = {}     # session -> why it cannot step now
+        self.converged = set()  # sessions not stepped because they converged (read at the last tick)
         self.next = 0        # index of the session the next tick starts with
         self.tick_ms = []
 
@@ -78,27 +85,37 @@ class LiveRun:
                 outcome.stopped.append((session, "the object was deleted or its mesh replaced"))
                 continue
             if session.busy is not None:  # re-factoring for new pins on another thread
+                self.converged.discard(session)
                 continue
             problem = session.sync_settings()
             if problem is not None:
                 if self.paused.get(session) != problem:
                     outcome.paused.append((session.name, problem))
                 self.paused[session] = problem
+                self.converged.discard(session)
                 continue
             self.paused.pop(session, None)
             if session.busy is not None:  # the sync began re-factoring for new pins: wait for it
+                self.converged.discard(session)
                 continue
+            if session.converged:  # and nothing changed since: no step, no CPU
+                self.converged.add(session)
+                continue
+            self.converged.discard(session)
             try:
                 session.step()
             except (SettingsError, ValueError, RuntimeError) as exc:
                 outcome.stopped.append((session, str(exc)))
                 continue
+            if session.converged:
+                self.converged.add(session)
             stepped += 1
             self.next = (index + 1) % count
             if time.perf_counter() - start > budget:
                 break
         if stepped:
             self.tick_ms.append((time.perf_counter() - start) * 1000.0)
+        outcome.stepped = stepped
         for session, _why in outcome.stopped:
             self._drop(session)
         return outcome
@@ -107,6 +124,7 @@ class LiveRun:
         """Restore ``session``'s object as far as it exists and take it out of the run."""
         self.sessions.remove(session)
         self.paused.pop(session, None)
+        self.converged.discard(session)
         self.next = 0
         session.cancel()
 
@@ -166,15 +184,22 @@ class LiveRun:
         sessions = self.sessions
         if not sessions:
             return TITLE
+        converged = self.converged
         if len(sessions) == 1:
             text = TITLE + ": step %d" % sessions[0].steps
-            if sessions[0].step_ms and self.tick_ms:
+            if converged:
+                text += "  |  " + CONVERGED
+            elif sessions[0].step_ms and self.tick_ms:
                 text += "  |  %.1f ms/step, %.1f ms/tick" % (sessions[0].step_ms[-1], self.tick_ms[-1])
         else:
             steps = [session.steps for session in sessions]
             text = TITLE + ": %d objects, step %s" % (
                 len(sessions), min(steps) if min(steps) == max(steps) else "%d-%d" % (min(steps), max(steps)))
-            if self.tick_ms:
+            if len(converged) == len(sessions):
+                text += "  |  " + CONVERGED + " (all)"
+            elif converged:
+                text += "  |  %s: %s" % (CONVERGED, ", ".join(sorted("'%s'" % s.name for s in converged)))
+            if self.tick_ms and len(converged) < len(sessions):
                 text += "  |  %.1f ms/tick" % self.tick_ms[-1]
         for session, why in self.paused.items():
             text += "  |  " + (("'%s' paused: " % session.name) if len(sessions) > 1 else "paused: ") + why
@@ -190,8 +215,12 @@ class LiveRun:
         return next((session.busy for session in self.sessions if session.busy is not None), None)
 
     def panel_title(self):
-        """The sidebar box's first row: "Preparing... 40%" or "Stylizing live"."""
-        return progress_text("Preparing", self.setup.fraction) if self.preparing else "Stylizing live"
+        """The sidebar box's first row: "Preparing... 40%", "Stylizing live" or "Converged"."""
+        if self.preparing:
+            return progress_text("Preparing", self.setup.fraction)
+        if self.sessions and len(self.converged) == len(self.sessions):
+            return CONVERGED
+        return "Stylizing live"
 
     def panel_lines(self):
         """(text, icon) rows for the sidebar under the title: each object and how far it is."""
@@ -204,6 +233,8 @@ class LiveRun:
                 lines.append(("%s: %s" % (session.name, progress_text(busy.text(), busy.fraction)), 'TIME'))
             elif session in self.paused:
                 lines.append(("%s: paused" % session.name, 'PAUSE'))
+            elif session in self.converged:
+                lines.append(("%s: converged, step %d" % (session.name, session.steps), 'CHECKMARK'))
             else:
                 lines.append(("%s: step %d" % (session.name, session.steps), 'MESH_DATA'))
         return lines

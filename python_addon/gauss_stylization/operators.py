@@ -22,7 +22,7 @@ from .validation import object_problem, poll_result
 from .viewport import existing_area, redraw_viewports
 
 TICK_SECONDS = 0.01
-PANEL_SECONDS = 0.25  # how often a live run redraws the sidebar (the viewport: every tick)
+PANEL_SECONDS = 0.25  # how often a live run redraws the sidebar (the viewport: every tick that steps)
 KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel")  # what modal_events does with keys
 HINT = "  |  ".join(KEY_HINTS)
 SETUP_HINT = "Esc: cancel"
@@ -44,7 +44,8 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
 
     # The range and default of the object's Script Steps, which a script run defaults to.
     iterations: _STEPS.prop({}, label="Iterations",
-                            tooltip="Solver steps (scripts: defaults to each object's Script Steps setting)")
+                            tooltip="Solver steps, 0: until converged, at most %d (scripts: defaults to each "
+                                    "object's Script Steps setting)" % schema.UNTIL_CONVERGED_CAP)
     # Settings a kept live run ended with, so the redo panel repeats that run (JSON, see settings_io).
     settings_json: StringProperty(options={'HIDDEN', 'SKIP_SAVE'})
 
@@ -146,8 +147,10 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             self.stop(context, keep=False)
             return {'CANCELLED'}
         self._show_busy(context)
-        self._redraw(context)
-        self.show_status(context)
+        if outcome.stepped or time.monotonic() - self._panels_drawn > PANEL_SECONDS:
+            # Nothing stepped (converged, paused, waiting for pins): a refresh a few times a second.
+            self._redraw(context)
+            self.show_status(context)
         return {'PASS_THROUGH'}  # other operators may own this timer event
 
     def _redraw(self, context):

@@ -20,6 +20,9 @@ FACTS = native.facts()
 CUSTOM = 'CUSTOM'
 REGION_THRESHOLD = 0.5  # a face is in a slot's region when its vertex weights average above this
 PIN_THRESHOLD = 0.5     # a vertex is pinned when its pin-group weight is above this
+# A scripted run of 0 steps runs until converged; it stops after this many steps if it has not by then
+# (a mesh that keeps changing, a Tolerance below what the shape reaches), so a script always ends.
+UNTIL_CONVERGED_CAP = 5000
 CUSTOM_NUMBER = 99  # enum number of Custom in saved files; presets are numbered 0, 1, ... in PRESETS order
 
 
@@ -121,10 +124,11 @@ OBJECT = (
           soft=(0.0, 20.0), live=Live.SETTER, panel=Panel.SOLVER, relevant=_not_cubic),
     Int("admm_iterations", "ADMM Iterations", "Inner iterations per solver step",
         live=Live.SETTER, panel=Panel.SOLVER, relevant=_not_cubic),
-    Float("tolerance", "Tolerance", "A run has converged when a step moves the mesh by less than this "
-          "fraction of how far it has moved from its original shape",
-          soft=(1e-4, 0.1), panel=Panel.SOLVER),
-    Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode",
+    Float("tolerance", "Tolerance", "A run has converged, and stops, when a step moves the mesh by less than "
+          "this fraction of how far it has moved from its original shape", soft=(1e-4, 0.1), live=Live.SETTER,
+          panel=Panel.SOLVER),
+    Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode; "
+        "0: until converged (Tolerance), at most %d steps" % UNTIL_CONVERGED_CAP,
         default=100, hard=(0, 100000), panel=Panel.SOLVER),
     Choice("output", "Output", "Where the stylized coordinates go",
            (('MESH', "Mesh", "Move the vertices of the mesh itself", 0),

@@ -195,8 +195,12 @@ class Session:
             pins = styles.pinned_vertices(self.weights, settings.pin_group)
             check_pins(self.obj, pins, self.arrays.triangles)
         if Live.SETTER in changed:
+            # Only those that changed: setting one ends the solver's converged state (Tolerance
+            # excepted, which only changes what `converged` says), so a run resumes only when it should.
             for field in schema.SOLVER_SETTERS:
-                setattr(solver, field.name, field.read(settings))
+                value = field.read(settings)
+                if value != self.applied[field.name]:
+                    setattr(solver, field.name, value)
         # Never let face indices point past the style list, in either order.
         if new_styles is not None and len(new_styles) >= len(self.applied["styles"]):
             solver.set_styles(new_styles)
@@ -227,10 +231,33 @@ class Session:
             self.pins_setup.cancel()
             self.pins_setup = None
 
+    @property
+    def converged(self):
+        """Did the last step move the mesh by less than the Tolerance, with nothing changed since?
+        (The solver forgets it at any change of settings, styles or pins.)"""
+        return self.solver.converged
+
+    @property
+    def reldv(self):
+        """The last step's relative change (inf before the first step and after a change)."""
+        return self.solver.last_reldv
+
     def step(self, count=1):
         """Run ``count`` solver iterations and write the result to the target."""
         start = time.perf_counter()
         self.solver.step(count)
+        self._stepped(count, start)
+
+    def step_until(self, max_steps):
+        """Step until converged (the solver's tolerance, the object's Tolerance), at most ``max_steps``
+        times; write the result. Returns the number of steps taken."""
+        start = time.perf_counter()
+        count = self.solver.step_until(None, max_steps)
+        if count:
+            self._stepped(count, start)
+        return count
+
+    def _stepped(self, count, start):
         self.step_ms.append((time.perf_counter() - start) * 1000.0 / max(count, 1))
         self.steps += count
         self.solver.vertices_into(self.result)

@@ -39,6 +39,9 @@ def main():
     bpy.ops.wm.obj_import(filepath=os.path.join(REPO, "..", "shared", "meshes", mesh))
     obj = bpy.context.selected_objects[0]
     bpy.context.view_layer.objects.active = obj
+    # The smallest Tolerance, so every tick measured takes a step (a converged object takes none).
+    schema = gauss_stylization.schema
+    obj.gauss_stylization.tolerance = schema.field(schema.OBJECT, "tolerance").hard[0]
 
     start = time.perf_counter()
     planned = gauss_stylization.targets.plan_objects(Reports(), [obj])

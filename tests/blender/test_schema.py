@@ -101,6 +101,10 @@ LIVE_CHANGES = {
     ("object", "cubic_lambda"): ({}, dict(method='CUBIC'), 0.8),
     ("object", "admm_iterations"): ({}, {}, 3),
 }
+# Live settings that change what the solver says about the shape, not the shape: the value changed to.
+LIVE_READOUTS = {
+    ("object", "tolerance"): 0.25,  # what `converged` compares with
+}
 
 
 def _live_fields(addon):
@@ -111,7 +115,21 @@ def _live_fields(addon):
 
 
 def test_every_live_setting_has_a_case_below(addon):
-    assert set(LIVE_CHANGES) == _live_fields(addon)
+    assert set(LIVE_CHANGES) | set(LIVE_READOUTS) == _live_fields(addon)
+
+
+@pytest.mark.parametrize("owner, name", sorted(LIVE_READOUTS), ids=["-".join(k) for k in sorted(LIVE_READOUTS)])
+def test_a_readout_setting_changed_mid_run_reaches_the_solver(addon, owner, name):
+    obj = helpers.suzanne(levels=0)
+    helpers.add_slot(obj, 'CUBE')
+    settings = obj.gauss_stylization
+    run = addon.session.Session(obj)
+    run.step(2)
+    field = addon.schema.field(addon.schema.OBJECT, name)
+    field.write(settings, LIVE_READOUTS[owner, name])
+    assert run.sync_settings() is None
+    assert getattr(run.solver, name) == field.read(settings)
+    run.cancel()
 
 
 @pytest.mark.parametrize("owner, name", sorted(LIVE_CHANGES), ids=["-".join(k) for k in sorted(LIVE_CHANGES)])

@@ -339,6 +339,39 @@ def region_group_deleted(name):
     yield from kit.end_with('ESC', "Esc then restores the mesh bit-exactly", name, original)
 
 
+# -- converged (issue 12: stop when converged) -----------------------------------------------
+
+def converged_then_sigma_resumes(name):
+    """A live run whose object reaches its Tolerance stops stepping and says Converged; a Sigma typed
+    into the sidebar makes it step again; Esc restores the mesh."""
+    obj = bpy.data.objects[name]
+    activate(obj)
+    settings = obj.gauss_stylization
+    original, before = coords(obj), (settings.tolerance, settings.styles[0].sigma)
+    settings.tolerance = 0.05  # converges within a few dozen steps
+    yield from live_run(1)
+    op = live_operator()
+    deadline = time.monotonic() + 30.0
+    while op is not None and not op.live.converged and time.monotonic() < deadline:
+        yield 0.1
+    check("a live run that converged says so (status bar and panel)",
+          op is not None and "Converged" in op.live.status_text() and op.live.panel_title() == "Converged",
+          op.live.status_text() if op else "no run")
+    steps = op.session.steps if op else None
+    yield 0.5
+    check("... and stops stepping", op is not None and live_operator() is op and op.session.steps == steps,
+          "steps %s -> %s" % (steps, op.session.steps if op else None))
+    yield from type_into_field(SIGMA_PATH, "11")
+    deadline = time.monotonic() + 10.0
+    while op is not None and op.session.steps == steps and time.monotonic() < deadline:
+        yield 0.05
+    check("a Sigma typed into the sidebar makes it step again",
+          op is not None and live_operator() is op and op.session.steps > steps
+          and op.session.applied["styles"][0]["sigma"] == 11.0)
+    yield from kit.end_with('ESC', "Esc then restores the mesh bit-exactly", name, original)
+    settings.tolerance, settings.styles[0].sigma = before
+
+
 # -- a big set-up (issue 12: progress while it sets up) --------------------------------------
 
 def big_set_up_esc(name):
@@ -531,7 +564,7 @@ def make_other(name):
 
 SCENARIOS = ("sigma_and_move_during_a_kept_run", "sigma_and_move_during_a_cancelled_run",
              "gizmo_and_header_clicks", "outliner_selection", "several_objects", "region_group_deleted",
-             "big_set_up_esc", "scripted_run_in_a_window", "undo_steps_given_back",
+             "converged_then_sigma_resumes", "big_set_up_esc", "scripted_run_in_a_window", "undo_steps_given_back",
              "file_loaded_mid_run")  # the last replaces the whole file
 
 
