@@ -3,17 +3,11 @@ until converged within a step cap, and a live run that stops stepping a converge
 resumes when something changes."""
 
 import re
-import time
 
 import bpy
 import numpy as np
 
 import helpers
-
-
-class _Reports:
-    def report(self, kind, text):
-        pass
 
 
 def _kept_sessions(addon, monkeypatch):
@@ -117,16 +111,6 @@ def test_a_run_until_converged_prints_its_progress(addon, monkeypatch, capfd):
 
 # -- live run ----------------------------------------------------------------------------
 
-def _live(addon, objects):
-    planned = addon.targets.plan_objects(_Reports(), objects)
-    live = addon.live_run.LiveRun(planned)
-    deadline = time.monotonic() + 60
-    while not live.setup.done and time.monotonic() < deadline:
-        time.sleep(0.01)
-    assert live.finish_setup() == []
-    return live
-
-
 def _tick_until_converged(live, most=3000):
     for _ in range(most):
         live.tick(budget=1e9)
@@ -138,7 +122,7 @@ def _tick_until_converged(live, most=3000):
 def test_a_converged_live_run_stops_stepping_and_resumes_on_a_change(addon):
     obj = helpers.suzanne(levels=0)
     helpers.add_slot(obj, 'CUBE')
-    live = _live(addon, [obj])
+    live = helpers.live_run([obj])
     session = live.sessions[0]
     try:
         _tick_until_converged(live)
@@ -176,7 +160,7 @@ def test_a_converged_object_waits_while_the_others_step(addon):
     b.location.x = 3.0
     a.select_set(True)
     b.gauss_stylization.tolerance = 1e-5  # converges much later
-    live = _live(addon, [a, b])
+    live = helpers.live_run([a, b])
     first, second = live.sessions
     try:
         for _ in range(3000):

@@ -2,7 +2,6 @@
 solver, skipped objects named, one undo step; the live run's ticks without a window."""
 
 import json
-import time
 
 import bpy
 import numpy as np
@@ -108,27 +107,9 @@ def test_redo_panel_repeats_every_object_with_its_settings(addon):
 
 # -- the live run's ticks (the modal operator drives these; see windowed_live_run.py) --------
 
-class _Reports:
-    def __init__(self):
-        self.lines = []
-
-    def report(self, kind, text):
-        self.lines.append((kind, text))
-
-
-def _live(addon, objects):
-    planned = addon.targets.plan_objects(_Reports(), objects)
-    live = addon.live_run.LiveRun(planned)
-    deadline = time.monotonic() + 60
-    while not live.setup.done and time.monotonic() < deadline:
-        time.sleep(0.01)
-    assert live.finish_setup() == []
-    return live
-
-
 def test_live_ticks_step_every_object_in_turn_within_the_budget(addon):
     a, b = _pair(levels=0)
-    live = _live(addon, [b, a])
+    live = helpers.live_run([b, a])
     live.tick(budget=1e9)
     assert [s.steps for s in live.sessions] == [1, 1]
     for expected in ([2, 1], [2, 2], [3, 2]):  # a budget used up by one step: round-robin
@@ -140,13 +121,13 @@ def test_live_ticks_step_every_object_in_turn_within_the_budget(addon):
 def test_live_cancel_restores_all_and_keep_keeps_all(addon):
     a, b = _pair(levels=0)
     starts = helpers.coords(a), helpers.coords(b)
-    live = _live(addon, [b, a])
+    live = helpers.live_run([b, a])
     for _ in range(4):
         live.tick()
     assert not np.array_equal(helpers.coords(a), starts[0])
     live.cancel()
     assert np.array_equal(helpers.coords(a), starts[0]) and np.array_equal(helpers.coords(b), starts[1])
-    live = _live(addon, [b, a])
+    live = helpers.live_run([b, a])
     live.tick()
     live.keep()
     assert addon.rest_store.has_capture(a.data) and addon.rest_store.has_capture(b.data)
@@ -154,7 +135,7 @@ def test_live_cancel_restores_all_and_keep_keeps_all(addon):
 
 def test_live_run_goes_on_without_a_deleted_object(addon):
     a, b = _pair(levels=0)
-    live = _live(addon, [b, a])
+    live = helpers.live_run([b, a])
     mesh, a_start = a.data, helpers.coords(a)
     live.tick()
     bpy.data.objects.remove(a)
@@ -170,7 +151,7 @@ def test_live_run_goes_on_without_a_deleted_object(addon):
 def test_live_run_cancelled_while_preparing_changes_nothing(addon):
     a, b = _pair(levels=0)
     starts = helpers.coords(a), helpers.coords(b)
-    planned = addon.targets.plan_objects(_Reports(), [b, a])
+    planned = addon.targets.plan_objects(helpers.Reports(), [b, a])
     live = addon.live_run.LiveRun(planned)
     live.cancel()
     assert live.setup is None
@@ -181,7 +162,7 @@ def test_live_run_cancelled_while_preparing_changes_nothing(addon):
 def test_each_object_of_a_live_run_finds_its_own_session(addon):
     # For features that work on the object under the mouse (pin handles, the sphere overlay).
     a, b = _pair(levels=0)
-    live = _live(addon, [b, a])
+    live = helpers.live_run([b, a])
 
     class Run:
         sessions = live.sessions
