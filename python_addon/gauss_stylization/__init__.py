@@ -18,13 +18,15 @@ bl_info = {
 if "bpy" in locals():  # F8 / script reload: reload the submodules too
     import importlib
     for _module in (errors, native, pc2, fields, schema, properties, mesh_io, source, styles, validation,
-                    cache_modifier, output, rest_store, settings_io, session, runs, viewport, bake_progress,
-                    operators, slot_operators, ui, bake, bake_operators, bake_ui):
+                    cache_modifier, output, rest_store, settings_io, undo_guard, runs, progress, solver_setup,
+                    session, targets, live_run, scripted_run, viewport, modal_events, operators, slot_operators,
+                    ui, bake, bake_operators, bake_ui):
         importlib.reload(_module)
 else:
     from . import (errors, native, pc2, fields, schema, properties, mesh_io, source, styles, validation,
-                   cache_modifier, output, rest_store, settings_io, session, runs, viewport, bake_progress,
-                   operators, slot_operators, ui, bake, bake_operators, bake_ui)
+                   cache_modifier, output, rest_store, settings_io, undo_guard, runs, progress, solver_setup,
+                   session, targets, live_run, scripted_run, viewport, modal_events, operators, slot_operators,
+                   ui, bake, bake_operators, bake_ui)
 
 import bpy
 

@@ -10,8 +10,8 @@ way the scene frame and the object's cache modifier are as before (the
 modifier is off while the bake reads the object, so no bake reads an earlier one).
 
 Warm start (AnimationBake): frame f0 = frame_start is stylized from its rest shape
-R_f0 with Script Steps (settings.iterations) steps, exactly as Stylize would on
-that frame; every later frame f starts from
+R_f0 with Script Steps (settings.iterations) steps (0: until converged), exactly as
+Stylize would on that frame; every later frame f starts from
 
     X_f = Y_{f-1} + (R_f - R_{f-1})       (per vertex, object space)
 
@@ -26,9 +26,9 @@ import os
 
 import bpy
 
-from . import cache_modifier, pc2, source as sources
+from . import cache_modifier, pc2, schema, source as sources
 from .errors import SettingsError
-from .session import Session
+from .session import Plan, Session
 from .settings_io import to_dict
 
 DEFAULT_PATH = "//%s_gauss.pc2"  # % the object's name made file-safe
@@ -142,7 +142,7 @@ class AnimationBake(_Bake):
             depsgraph = bpy.context.evaluated_depsgraph_get()
             source = self.first.moved(sources.evaluated_coords(self.obj, depsgraph, self.first.arrays,
                                                                "at frame %d" % frame))
-        session = Session(self.obj, source, CacheTarget(self.writer))
+        session = Session(Plan(self.obj, source, CacheTarget(self.writer)))
         steps = self.settings.bake_steps
         if self.warm_start:
             if self.previous is None:
@@ -150,7 +150,10 @@ class AnimationBake(_Bake):
             else:
                 rest, result = self.previous
                 session.start_from(result + (source.arrays.coords - rest))
-        session.step(steps)
+        if steps == 0:  # Script Steps 0: until converged, as Stylize runs it
+            session.step_until(schema.UNTIL_CONVERGED_CAP)
+        else:
+            session.step(steps)
         if self.warm_start:
             self.previous = (source.arrays.coords, session.result.copy())
         self.done += 1
@@ -169,7 +172,7 @@ class ProgressBake(_Bake):
             source = sources.read(obj, self.settings.use_modifiers)
             rest = source.arrays.coords
             self._open(source.arrays.num_vertices, frame_start)
-            self.session = Session(obj, source, CacheTarget(self.writer))
+            self.session = Session(Plan(obj, source, CacheTarget(self.writer)))
             self.writer.add(rest)  # frame 0: before the first step
             self.done = 1
         except BaseException:

@@ -4,8 +4,9 @@ From a script or in background mode they run synchronously and print a progress
 line at least every 10%; from the UI they run in the background of Blender's
 event loop (a timer, frames for up to TICK_BUDGET seconds per tick) with the
 progress indicator, and Esc cancels, leaving no file and no modifier behind.
-A bake registers as a run (runs.py), so Stylize and Reset wait for it and undo
-cancels it first.
+Progress goes through the add-on's shared ProgressReport (progress.py). A bake
+registers as a run (runs.py), so Stylize and Reset wait for it and undo cancels
+it first.
 """
 
 import time
@@ -15,9 +16,10 @@ from bpy.props import BoolProperty, IntProperty, StringProperty
 
 from . import bake, runs, schema
 from .errors import NativeModuleError, SettingsError
-from .operators import start_with_style, stylize_problem
-from .bake_progress import Progress
-from .validation import poll_result
+from .progress import ProgressReport
+from .session import ensure_style_slot
+from .targets import stylize_problem
+from .validation import object_problem, poll_result
 
 TICK_SECONDS = 0.01
 TICK_BUDGET = 0.1  # seconds of baking per tick (at least one frame), so the UI stays responsive
@@ -32,23 +34,48 @@ def _frame_prop(name, tooltip, default=1):
     return IntProperty(name=name, description=tooltip, default=default, min=-FRAME_LIMIT, max=FRAME_LIMIT)
 
 
+_START_ERRORS = (SettingsError, NativeModuleError, OSError, ValueError)
+
+
 class _BakeOperator:
-    """Runs ``self.make_bake(context)`` (a bake.AnimationBake / ProgressBake) to its end."""
+    """Runs ``self.make_bake(context)`` (a bake.AnimationBake / ProgressBake) to its end.
+    A bake acts on the active object alone."""
 
     # One undo step takes the modifier away again (the file stays); the redo panel re-bakes.
     bl_options = {'REGISTER', 'UNDO'}
-    panel_hints = ("Baking to a point cache", ("Esc: cancel (nothing is written)",))  # the main panel's box
+    sessions = ()  # runs.py asks every run for its live Stylize sessions: a bake has none
 
     @classmethod
     def poll(cls, context):
-        return poll_result(cls, stylize_problem(context))
+        return poll_result(cls, object_problem(context) or stylize_problem(context))
 
     def _start(self, context):
+        """The bake set up, with a default style slot added first if the object has none (taken
+        back if the set-up fails: a failed start changes nothing); None if it failed (reported)."""
         obj = context.active_object
-        job = start_with_style(self, obj, lambda: self.make_bake(context),
-                               (SettingsError, NativeModuleError, OSError, ValueError))
-        self._job, self._obj_name = job, obj.name
-        return job
+        self._job, self._obj_name = None, obj.name
+        added = ensure_style_slot(obj.gauss_stylization)
+        try:
+            self._job = self.make_bake(context)
+        except _START_ERRORS as exc:
+            if added:
+                obj.gauss_stylization.styles.remove(0)
+            self.report({'ERROR'}, str(exc))
+            return None
+        if added:
+            self.report({'INFO'}, "No style slot yet: added a %s style" % obj.gauss_stylization.styles[0].name)
+        return self._job
+
+    def panel_state(self):
+        """(title, [(text, icon)], key hints) for the sidebar's box while the bake runs (ui.py)."""
+        return ("Baking to a point cache", [("%s: %s" % (self._obj_name, self._progress_text()), 'FILE_CACHE')],
+                ("Esc: cancel (nothing is written)",))
+
+    def _progress_text(self):
+        return "frame %d of %d" % (self._job.done, self._job.total)
+
+    def _update(self, report):
+        report.update(self._job.done / self._job.total, self._progress_text())
 
     def _advance(self):
         """One frame; on failure cancel and report. False once the bake ended either way."""
@@ -70,7 +97,8 @@ class _BakeOperator:
         self.report({'INFO'}, "Baked %d frames of '%s' to %s" % (self._job.total, self._obj_name, self._job.path))
         return {'FINISHED'}
 
-    def _label(self):
+    def _title(self):
+        """What the progress indicator, status bar and printed lines call this bake."""
         return "Gauss %s '%s'" % (self.bl_label, self._obj_name)
 
     # -- scripts and background mode: synchronous --------------------------------------
@@ -78,15 +106,12 @@ class _BakeOperator:
     def execute(self, context):
         if self._start(context) is None:
             return {'CANCELLED'}
-        progress = Progress(context, self._label(), self._job.total)
-        try:
-            progress.update(self._job.done)
+        with ProgressReport(context, self._title()) as report:
+            self._update(report)
             while not self._job.finished:
                 if not self._advance():
                     return {'CANCELLED'}
-                progress.update(self._job.done)
-        finally:
-            progress.end()
+                self._update(report)
         return self._finish()
 
     # -- from the UI: modal on a timer ------------------------------------------------
@@ -97,11 +122,11 @@ class _BakeOperator:
         self.fill_defaults(context)
         if self._start(context) is None:
             return {'CANCELLED'}
-        self._progress = Progress(context, self._label(), self._job.total)
-        self._progress.update(self._job.done)
+        self._progress = ProgressReport(context, self._title())
+        self._update(self._progress)
         self._timer = context.window_manager.event_timer_add(TICK_SECONDS, window=context.window)
         context.window_manager.modal_handler_add(self)
-        runs.start(self._job.obj, self)
+        runs.start([self._job.obj], self)
         return {'RUNNING_MODAL'}
 
     def modal(self, context, event):
@@ -128,7 +153,7 @@ class _BakeOperator:
                 return {'CANCELLED'}
             if time.perf_counter() > deadline:
                 break
-        self._progress.update(self._job.done)
+        self._update(self._progress)
         if not self._job.finished:
             return {'PASS_THROUGH'}
         self._end(context)

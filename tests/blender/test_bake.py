@@ -102,6 +102,14 @@ def test_warm_bake_continues_each_frame_from_the_previous_result(addon, tmp_path
     assert np.all(cold_offsets[1:] < 0.8 * warm_offsets[1:])
 
 
+def test_warm_bake_with_script_steps_0_starts_from_a_converged_first_frame(addon, tmp_path):
+    obj = rig.bent_capsule()
+    obj.gauss_stylization.iterations = 0  # until converged, as Stylize runs it
+    path = tmp_path / "warm.pc2"
+    assert _bake_animation(path, 1, 3, warm_start=True) == {'FINISHED'}
+    assert np.array_equal(addon.pc2.read(str(path)).frames[0], _stylized_alone(obj, 1, 0))
+
+
 def test_playback_shows_the_baked_frames_exactly(addon, tmp_path):
     obj = rig.bent_capsule()
     path = tmp_path / "capsule.pc2"
@@ -139,7 +147,8 @@ def test_bake_progress_frame_k_is_k_steps_of_a_scripted_run(addon, tmp_path):
     assert cache.frames.shape[0] == 5 and cache.start == 5.0
     assert np.array_equal(helpers.coords(obj), start)  # the mesh itself is not changed
     for k in range(5):
-        helpers.stylize(3 * k)
+        if k:  # (a scripted run of 0 steps runs until converged; frame 0 is the mesh before any step)
+            helpers.stylize(3 * k)
         assert np.array_equal(cache.frames[k], helpers.coords(obj)), k
         bpy.context.scene.frame_set(5 + k)
         helpers.mesh_io.write_vertex_coords(obj.data, start)  # back to the start: the next run is fresh
@@ -227,13 +236,14 @@ import sys, bpy
 sys.path.insert(0, sys.argv[-1])
 import gauss_stylization
 gauss_stylization.register()
-bpy.ops.object.gauss_bake_animation(frame_start=1, frame_end=25, warm_start=False)
+bpy.ops.object.gauss_bake_animation(frame_start=1, frame_end=40, warm_start=False)
 bpy.ops.wm.save_mainfile()
 """
 
 
 def test_headless_bake_prints_progress_and_keeps_a_relative_path(addon, tmp_path):
-    rig.bent_capsule(frames=(1, 25))
+    obj = rig.bent_capsule(frames=(1, 40))
+    obj.gauss_stylization.bake_steps = 300  # long enough (seconds) for progress.ProgressReport to show it
     blend = tmp_path / "shot.blend"
     bpy.ops.wm.save_as_mainfile(filepath=str(blend))
     result = subprocess.run([bpy.app.binary_path, "-b", str(blend), "--python-exit-code", "1",
@@ -241,8 +251,11 @@ def test_headless_bake_prints_progress_and_keeps_a_relative_path(addon, tmp_path
                             capture_output=True, text=True, timeout=300)
     out = result.stdout + result.stderr
     assert result.returncode == 0, out
-    done = [int(m.group(1)) for m in re.finditer(r"Gauss Bake Animation 'Capsule': (\d+)/25", out)]
-    assert done[0] == 0 and done[-1] == 25 and max(np.diff(done)) <= 2.5, out  # a line every 10% at least
+    lines = re.findall(r"Gauss Bake Animation 'Capsule': frame (\d+) of 40\.\.\. (\d+)%", out)
+    tenths = [int(percent) // 10 for _frame, percent in lines]
+    # Shown after half a second (progress.SHOW_AFTER), then a line for every tenth passed, up to the end.
+    assert tenths and tenths[0] <= 5 and tenths == list(range(tenths[0], 11)), out
+    assert "Gauss Bake Animation 'Capsule': done in" in out
     assert (tmp_path / "Capsule_gauss.pc2").is_file()
     bpy.ops.wm.open_mainfile(filepath=str(blend))
     modifier = bpy.data.objects["Capsule"].modifiers[-1]

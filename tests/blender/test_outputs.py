@@ -184,3 +184,52 @@ def test_the_new_object_deleted_mid_run_stops_it(addon):
     assert not run.object_alive()
     run.cancel()  # removes the orphaned mesh, touches no freed data
     assert "Suzanne_stylized" not in bpy.data.meshes and obj.display_type == 'TEXTURED'
+
+
+# -- several objects (targets.py, live_run.py) -------------------------------------------
+
+def _subdivided_pair():
+    """Two subdivided Suzannes, 'A' and 'B' ('B' active, both selected), Use Modifiers and New Object."""
+    a, b = _subdivided_suzanne(), _subdivided_suzanne()
+    a.name, b.name = "A", "B"
+    b.location.x = 3.0
+    for obj in (a, b):
+        obj.gauss_stylization.use_modifiers, obj.gauss_stylization.output = True, 'NEW_OBJECT'
+    helpers.activate(b)
+    a.select_set(True)
+    return a, b
+
+
+def test_new_object_output_for_every_selected_object(addon):
+    a, b = _subdivided_pair()
+    starts = {obj.name: helpers.coords(obj) for obj in (a, b)}
+    shown = helpers.evaluated_coords(a)
+    assert bpy.ops.object.gauss_stylize(iterations=STEPS) == {'FINISHED'}
+    for obj in (a, b):
+        new = bpy.data.objects[obj.name + "_stylized"]
+        assert len(new.modifiers) == 0 and len(new.data.vertices) == len(shown)
+        assert np.abs(helpers.coords(new) - shown).max() > 1e-3
+        assert np.array_equal(helpers.coords(obj), starts[obj.name]) and obj.display_type == 'TEXTURED'
+
+
+def test_a_cancelled_live_run_of_several_new_objects_leaves_nothing(addon):
+    a, b = _subdivided_pair()
+    counts = (len(bpy.data.objects), len(bpy.data.meshes))
+    live = helpers.live_run([b, a])
+    live.tick(budget=1e9)
+    assert {"A_stylized", "B_stylized"} <= set(bpy.data.objects.keys())
+    assert a.display_type == b.display_type == 'WIRE'
+    live.cancel()
+    assert (len(bpy.data.objects), len(bpy.data.meshes)) == counts
+    assert a.display_type == b.display_type == 'TEXTURED'
+
+
+def test_a_live_run_cancelled_while_preparing_drops_the_evaluated_copies(addon):
+    # Use Modifiers reads each object's evaluated mesh into a mesh datablock when the run is planned;
+    # cancelled before any Session took them over, they must go too.
+    a, b = _subdivided_pair()
+    meshes = len(bpy.data.meshes)
+    live = addon.live_run.LiveRun(addon.targets.plan_objects(helpers.Reports(), [b, a]))  # set-up running
+    assert len(bpy.data.meshes) == meshes + 2
+    live.cancel()
+    assert len(bpy.data.meshes) == meshes
