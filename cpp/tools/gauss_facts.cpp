@@ -1,5 +1,5 @@
-// Prints the solver's settings table and preset registry (settings.h, presets.h) as JSON: the same
-// facts gauss_core exports as DEFAULTS, LIMITS and PRESETS. The build writes this to the staged
+// Prints the solver's settings table, preset registry and size limits (settings.h, presets.h) as JSON:
+// the same facts gauss_core exports as DEFAULTS, LIMITS, PRESETS and SIZE_LIMITS. The build writes this to the staged
 // add-on's core_facts.json, which the add-on reads when the native module cannot be loaded (another
 // Python, a missing runtime): its properties then still register with the solver's defaults and ranges.
 #include <cstdio>
@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
     std::printf("%s\"%s\"", first ? "" : ", ", name.c_str());
     first = false;
   }
-  std::printf("]\n}\n");
+  std::printf("],\n  \"SIZE_LIMITS\": {\"normals\": %d, \"rings\": %d}\n}\n", settings::max_style_normals,
+              settings::max_style_rings);
   return 0;
 }

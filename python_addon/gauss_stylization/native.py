@@ -23,8 +23,9 @@ FACTS_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "core_fact
 
 # defaults: {name: value} (also "preset": the default preset name);
 # limits:   {name: (min, max)}, inclusive;
-# presets:  preset names; the position of each is its enum number in saved .blend files.
-Facts = namedtuple("Facts", "defaults limits presets")
+# presets:  preset names; the position of each is its enum number in saved .blend files;
+# sizes:    {"normals": .., "rings": ..}, most per style (None from a build that did not write them).
+Facts = namedtuple("Facts", "defaults limits presets sizes", defaults=(None,))
 
 def load_failure_message(exc):
     """What the artist reads when ``gauss_core`` cannot be imported: why, and which build fixes it.
@@ -92,7 +93,8 @@ def facts():
         except NativeModuleError as exc:
             _facts = read_facts_file(FACTS_FILE, exc)
         else:
-            _facts = _checked_facts(module.DEFAULTS, module.LIMITS, module.PRESETS)
+            _facts = _checked_facts(module.DEFAULTS, module.LIMITS, module.PRESETS,
+                                    getattr(module, "SIZE_LIMITS", None))
     return _facts
 
 
@@ -101,7 +103,7 @@ def read_facts_file(path, import_error=None):
     try:
         with open(path, encoding="utf-8") as handle:
             data = json.load(handle)
-        return _checked_facts(data["DEFAULTS"], data["LIMITS"], data["PRESETS"])
+        return _checked_facts(data["DEFAULTS"], data["LIMITS"], data["PRESETS"], data.get("SIZE_LIMITS"))
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise NativeModuleError(
             "The add-on cannot read the solver's settings: %s, and %s is unreadable (%s). "
@@ -109,11 +111,11 @@ def read_facts_file(path, import_error=None):
                                                              path, exc)) from exc
 
 
-def _checked_facts(defaults, limits, presets):
+def _checked_facts(defaults, limits, presets, sizes=None):
     limits = {name: (low, high) for name, (low, high) in dict(limits).items()}
     presets = tuple(str(name) for name in presets)
     defaults = dict(defaults)
     if not presets or defaults.get("preset") not in presets or not set(limits) <= set(defaults):
         raise ValueError("inconsistent solver facts (defaults %r, limits %r, presets %r)"
                          % (defaults, limits, presets))
-    return Facts(defaults, limits, presets)
+    return Facts(defaults, limits, presets, None if sizes is None else dict(sizes))
