@@ -22,6 +22,7 @@ void GaussSolver::set_styles(std::vector<PreferenceFunction> styles) {
       throw std::invalid_argument(msg.str());
     }
   styles_ = std::move(styles);
+  update_cubic_styles();
 }
 
 void GaussSolver::set_style(int index, PreferenceFunction style) {
@@ -31,6 +32,7 @@ void GaussSolver::set_style(int index, PreferenceFunction style) {
     throw std::invalid_argument(msg.str());
   }
   styles_[index] = std::move(style);
+  update_cubic_styles();
 }
 
 void GaussSolver::set_face_styles(const int64_t* style_of_input_face, int count) {
@@ -48,6 +50,7 @@ void GaussSolver::set_face_styles(const int64_t* style_of_input_face, int count)
     }
   for (size_t f = 0; f < topo_.faces.size(); ++f)
     face_style_[f] = static_cast<int>(style_of_input_face[topo_.input_face[f]]);
+  update_cubic_styles();
 }
 
 void GaussSolver::set_lambda(double lambda) {
@@ -59,6 +62,47 @@ void GaussSolver::set_lambda(double lambda) {
 void GaussSolver::set_admm_iterations(int n) {
   settings::admm_iterations.check(n);
   admm_iterations_ = n;
+}
+
+void GaussSolver::set_method(Method method) {
+  if (method != Method::gauss && method != Method::cubic) throw std::invalid_argument("unknown stylization method");
+  if (method == Method::cubic && !cubic_ready_) {
+    cubic_ = CubicLocalStep(topo_, rest_, edge_weight_);
+    cubic_ready_ = true;
+    update_cubic_styles();
+  }
+  method_ = method;
+}
+
+void GaussSolver::set_cubic_lambda(double lambda) {
+  settings::cubic_lambda.check(lambda);
+  cubic_lambda_ = lambda;
+}
+
+void GaussSolver::update_cubic_styles() {
+  if (!cubic_ready_) return;
+  const int nV = topo_.num_vertices;
+  std::vector<double> strength(nV, 0.0);
+  std::vector<int> frame(nV, 0);  // 0: no style (identity), s + 1: style s
+  std::vector<Eigen::Matrix3d> frames(1, Eigen::Matrix3d::Identity());
+  for (const PreferenceFunction& style : styles_) frames.push_back(style.rotation());
+  for (int v = 0; v < nV; ++v) {
+    const int begin = topo_.vertex_corner_start[v], end = topo_.vertex_corner_start[v + 1];
+    if (begin == end) continue;
+    double sum = 0;
+    int best = -1, best_count = 0;
+    for (int i = begin; i < end; ++i) {
+      const int s = face_style_[topo_.vertex_corners[i] / 3];
+      if (s < 0) continue;
+      sum += styles_[s].mu();
+      int count = 0;  // a vertex has a handful of faces: counting by scanning is cheapest
+      for (int j = begin; j < end; ++j) count += face_style_[topo_.vertex_corners[j] / 3] == s;
+      if (count > best_count || (count == best_count && s < best)) best = s, best_count = count;
+    }
+    strength[v] = sum / (end - begin);
+    frame[v] = best + 1;
+  }
+  cubic_.set_vertex_styles(strength, frame, frames);
 }
 
 std::vector<Vector3d> GaussSolver::checked_pin_targets(const std::vector<int64_t>& pinned,
@@ -101,11 +145,21 @@ std::vector<Vector3d> GaussSolver::to_solver_frame(const std::vector<Vector3d>& 
   return out;
 }
 
-void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin_positions) {
+void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress* watcher) {
+  Progress unwatched;
+  Progress& progress = watcher ? *watcher : unwatched;
+  progress.start(SetupPhase::ordering);
+  apply_pins(pinned, pin_positions, progress);
+  progress.finish();
+}
+
+void GaussSolver::apply_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress& progress) {
   std::vector<Vector3d> targets = checked_pin_targets(pinned, pin_positions);
   std::vector<int64_t> internal(pinned.size());
   for (size_t i = 0; i < pinned.size(); ++i) internal[i] = new_of_old_[pinned[i]];
-  laplacian_ = ConstrainedLaplacian(topo_, edge_weight_, rest_, internal, to_solver_frame(targets));
+  // Built aside and then moved in: if the factorization throws (Cancelled, OutOfMemory, not positive
+  // definite), the solver keeps its previous pins and factor.
+  laplacian_ = ConstrainedLaplacian(topo_, edge_weight_, rest_, internal, to_solver_frame(targets), &progress);
   ++factorization_count_;
   pinned_input_ = pinned;
   pin_targets_ = std::move(targets);

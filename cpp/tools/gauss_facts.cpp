@@ -1,7 +1,8 @@
-// Prints the solver's settings table, preset registry and size limits (settings.h, presets.h) as JSON:
-// the same facts gauss_core exports as DEFAULTS, LIMITS, PRESETS and SIZE_LIMITS. The build writes this to the staged
-// add-on's core_facts.json, which the add-on reads when the native module cannot be loaded (another
-// Python, a missing runtime): its properties then still register with the solver's defaults and ranges.
+// Prints the solver's settings table, preset registry, methods and size limits (settings.h, presets.h) as
+// JSON: the same facts gauss_core exports as DEFAULTS, LIMITS, PRESETS, METHODS and SIZE_LIMITS. The
+// build writes this to the staged add-on's core_facts.json, which the add-on reads when the native
+// module cannot be loaded (another Python, a missing runtime): its properties then still register with
+// the solver's defaults and ranges.
 #include <cstdio>
 #include <string>
 
@@ -31,7 +32,8 @@ int main(int argc, char** argv) {
   std::printf("{\n  \"DEFAULTS\": {");
   for (const gauss::Setting* s : settings::all)
     std::printf("\"%s\": %s, ", s->name, number(s->default_value, s->integer).c_str());
-  std::printf("\"preset\": \"%s\"},\n  \"LIMITS\": {", settings::default_preset);
+  std::printf("\"preset\": \"%s\", \"method\": \"%s\"},\n  \"LIMITS\": {", settings::default_preset,
+              settings::default_method);
   bool first = true;
   for (const gauss::Setting* s : settings::all) {
     std::printf("%s\"%s\": [%s, %s]", first ? "" : ", ", s->name, number(s->min, s->integer).c_str(),
@@ -42,6 +44,12 @@ int main(int argc, char** argv) {
   first = true;
   for (const std::string& name : gauss::preset_names()) {
     std::printf("%s\"%s\"", first ? "" : ", ", name.c_str());
+    first = false;
+  }
+  std::printf("],\n  \"METHODS\": [");
+  first = true;
+  for (const char* name : settings::method_names) {
+    std::printf("%s\"%s\"", first ? "" : ", ", name);
     first = false;
   }
   std::printf("],\n  \"SIZE_LIMITS\": {\"normals\": %d, \"rings\": %d}\n}\n", settings::max_style_normals,

@@ -30,6 +30,7 @@ class Live(enum.Enum):
 class Panel(enum.Enum):
     """Where a field's row is drawn (ui.py), in schema order."""
     MAIN = "main"       # Gauss Stylization panel, under Stylize / Reset
+    METHOD = "method"   # Styles sub-panel, above the slot list
     STYLES = "styles"   # Styles sub-panel, under the slot list
     SLOT = "slot"       # Styles sub-panel, the active slot's settings
     SOLVER = "solver"   # Solver sub-panel

@@ -23,9 +23,10 @@ FACTS_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "core_fact
 
 # defaults: {name: value} (also "preset": the default preset name);
 # limits:   {name: (min, max)}, inclusive;
-# presets:  preset names; the position of each is its enum number in saved .blend files;
-# sizes:    {"normals": .., "rings": ..}, most per style (None from a build that did not write them).
-Facts = namedtuple("Facts", "defaults limits presets sizes", defaults=(None,))
+# presets:  preset names; the position of each is its enum number in saved .blend files.
+# methods:  stylization method names ("gauss", "cubic"), numbered the same way.
+# sizes:    {"normals": .., "rings": ..}: the most a style takes (settings.h).
+Facts = namedtuple("Facts", "defaults limits presets methods sizes")
 
 def load_failure_message(exc):
     """What the artist reads when ``gauss_core`` cannot be imported: why, and which build fixes it.
@@ -93,17 +94,18 @@ def facts():
         except NativeModuleError as exc:
             _facts = read_facts_file(FACTS_FILE, exc)
         else:
-            _facts = _checked_facts(module.DEFAULTS, module.LIMITS, module.PRESETS,
-                                    getattr(module, "SIZE_LIMITS", None))
+            _facts = _checked_facts(module.DEFAULTS, module.LIMITS, module.PRESETS, module.METHODS,
+                                    module.SIZE_LIMITS)
     return _facts
 
 
 def read_facts_file(path, import_error=None):
-    """Facts from a core_facts.json ({"DEFAULTS": .., "LIMITS": .., "PRESETS": ..})."""
+    """Facts from a core_facts.json ({"DEFAULTS": .., "LIMITS": .., "PRESETS": .., "METHODS": ..})."""
     try:
         with open(path, encoding="utf-8") as handle:
             data = json.load(handle)
-        return _checked_facts(data["DEFAULTS"], data["LIMITS"], data["PRESETS"], data.get("SIZE_LIMITS"))
+        return _checked_facts(data["DEFAULTS"], data["LIMITS"], data["PRESETS"], data["METHODS"],
+                              data["SIZE_LIMITS"])
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise NativeModuleError(
             "The add-on cannot read the solver's settings: %s, and %s is unreadable (%s). "
@@ -111,11 +113,14 @@ def read_facts_file(path, import_error=None):
                                                              path, exc)) from exc
 
 
-def _checked_facts(defaults, limits, presets, sizes=None):
+def _checked_facts(defaults, limits, presets, methods, sizes):
     limits = {name: (low, high) for name, (low, high) in dict(limits).items()}
     presets = tuple(str(name) for name in presets)
+    methods = tuple(str(name) for name in methods)
     defaults = dict(defaults)
-    if not presets or defaults.get("preset") not in presets or not set(limits) <= set(defaults):
-        raise ValueError("inconsistent solver facts (defaults %r, limits %r, presets %r)"
-                         % (defaults, limits, presets))
-    return Facts(defaults, limits, presets, None if sizes is None else dict(sizes))
+    sizes = {name: int(value) for name, value in dict(sizes).items()}
+    if (not presets or defaults.get("preset") not in presets or defaults.get("method") not in methods
+            or not set(limits) <= set(defaults) or set(sizes) != {"normals", "rings"}):
+        raise ValueError("inconsistent solver facts (defaults %r, limits %r, presets %r, methods %r, sizes %r)"
+                         % (defaults, limits, presets, methods, sizes))
+    return Facts(defaults, limits, presets, methods, sizes)

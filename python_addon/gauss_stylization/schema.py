@@ -4,8 +4,8 @@ The PropertyGroups (properties.py), the JSON round-trip and the settings writer
 (settings_io.py), the validation before a run (validation.py), what a live run
 does when a setting changes (session.py) and the panel rows (ui.py) are all
 derived from these tables. Defaults and hard ranges of what the solver owns
-(lam, sigma, mu, axis_contribution, admm_iterations) and the preset registry
-come from the solver (native.facts()), never from here.
+(lam, sigma, mu, axis_contribution, admm_iterations, cubic_lambda), the preset
+registry and the methods come from the solver (native.facts()), never from here.
 
 A new setting is one line in its table (kinds: fields.py), plus its use in the
 solver call for slot fields (styles.make_style); see python_addon/README.md.
@@ -43,6 +43,27 @@ def _preset_items():
 
 DEFAULT_PRESET = preset_identifier(FACTS.defaults["preset"])
 DEFAULT_PRESET_LABEL = preset_label(FACTS.defaults["preset"])
+
+_METHOD_TIPS = {
+    "gauss": "Gauss Stylization (Kohlbrenner et al. 2021): faces turn towards each slot's Style",
+    "cubic": "Cubic Stylization (Liu & Jacobson 2019): surfaces turn towards the axes of a cube; a slot's "
+             "Mu scales Cubic Lambda in its region and its Rotation turns the cube, its Style is not used",
+}
+CUBIC = preset_identifier("cubic")
+
+
+def _method_items():
+    # Saved files store the number: method i of the solver's list is number i (append only).
+    return [(preset_identifier(name), name.title(), _METHOD_TIPS.get(name, ""), number)
+            for number, name in enumerate(FACTS.methods)]
+
+
+def is_cubic(settings):
+    return settings.method == CUBIC
+
+
+def _not_cubic(settings):
+    return settings.method != CUBIC
 
 
 def _is_custom(slot):
@@ -83,10 +104,15 @@ SLOT = (
 
 # GaussSettings: Object.gauss_stylization.
 OBJECT = (
+    Choice("method", "Method", "How the mesh is stylized", _method_items(),
+           preset_identifier(FACTS.defaults["method"]), live=Live.SETTER, panel=Panel.METHOD),
+    Float("cubic_lambda", "Cubic Lambda", "How cubic the shape becomes versus keeping its shape (0.2: the "
+          "Cubic Stylization paper's default)", soft=(0.0, 2.0), live=Live.SETTER, panel=Panel.METHOD,
+          text="Lambda", relevant=is_cubic),
     Float("lam", "Lambda", "How strongly faces follow their style versus keeping their shape",
-          soft=(0.0, 20.0), live=Live.SETTER, panel=Panel.SOLVER),
+          soft=(0.0, 20.0), live=Live.SETTER, panel=Panel.SOLVER, relevant=_not_cubic),
     Int("admm_iterations", "ADMM Iterations", "Inner iterations per solver step",
-        live=Live.SETTER, panel=Panel.SOLVER),
+        live=Live.SETTER, panel=Panel.SOLVER, relevant=_not_cubic),
     Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode",
         default=100, hard=(0, 100000), panel=Panel.SOLVER),
     Choice("output", "Output", "Where the stylized coordinates go",

@@ -16,9 +16,9 @@ def make_style(gauss_core, slot):
     Every slot field whose change rebuilds styles (Live.STYLES in schema.SLOT) is used here."""
     rotation = rotation_matrix(slot)
     if slot.preset == CUSTOM:
-        # Custom normals are rotated here, so "orientation" means the same for both kinds.
+        # The style turns its normals, as a preset's; the cubic method turns its cube by the same rotation.
         normals = np.array(slot.custom_normal_list(), dtype=np.float64).reshape(-1, 3)
-        return gauss_core.Style(normals=normals @ rotation.T, sigma=slot.sigma, mu=slot.mu)
+        return gauss_core.Style(normals=normals, rotation=rotation, sigma=slot.sigma, mu=slot.mu)
     return gauss_core.Style.preset(slot.preset.lower(), sigma=slot.sigma, mu=slot.mu,
                                    rotation=rotation, axis_contribution=slot.axis_contribution)
 

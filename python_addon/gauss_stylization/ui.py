@@ -77,6 +77,12 @@ class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
         obj = _mesh_object(context)
         settings = obj.gauss_stylization
         layout = self.layout
+        _draw_rows(_split_column(layout), obj, settings, schema.OBJECT, Panel.METHOD)
+        if schema.is_cubic(settings):
+            note = layout.column(align=True)  # short lines: the sidebar is narrow
+            note.label(text="Cubic uses each slot's", icon='INFO')
+            note.label(text="Mu and Rotation, not", icon='BLANK1')
+            note.label(text="its Style or Sigma", icon='BLANK1')
         row = layout.row()
         row.template_list("GAUSS_UL_styles", "", settings, "styles", settings, "active_style_index", rows=3)
         buttons = row.column(align=True)

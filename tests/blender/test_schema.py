@@ -32,6 +32,9 @@ def test_solver_owned_settings_take_the_solvers_defaults_and_limits(addon):
         assert prop.hard_min == pytest.approx(low, rel=1e-6) and prop.hard_min >= low, name
         assert prop.hard_max == pytest.approx(high, rel=1e-6) and prop.hard_max <= high, name
     assert _rna(addon, "preset").default == gauss_core.DEFAULTS["preset"].upper()
+    assert _rna(addon, "method").default == gauss_core.DEFAULTS["method"].upper()
+    assert [(item.identifier, item.value) for item in _rna(addon, "method").enum_items] == \
+        [(name.upper(), number) for number, name in enumerate(gauss_core.METHODS)]
 
 
 def test_the_json_facts_of_the_build_are_the_modules(addon):
@@ -40,6 +43,7 @@ def test_the_json_facts_of_the_build_are_the_modules(addon):
     assert from_file.defaults == gauss_core.DEFAULTS
     assert from_file.limits == dict(gauss_core.LIMITS)
     assert from_file.presets == tuple(gauss_core.PRESETS)
+    assert from_file.methods == tuple(gauss_core.METHODS)
     assert from_file.sizes == dict(gauss_core.SIZE_LIMITS)
     assert addon.native.facts() == from_file
 
@@ -94,6 +98,8 @@ LIVE_CHANGES = {
     ("object", "uncovered"): (dict(vertex_group="Top"), {}, 'UNSTYLED'),
     ("object", "pin_group"): ({}, {}, "Pins"),
     ("object", "lam"): ({}, {}, 8.0),
+    ("object", "method"): ({}, {}, 'CUBIC'),
+    ("object", "cubic_lambda"): ({}, dict(method='CUBIC'), 0.8),
     ("object", "admm_iterations"): ({}, {}, 3),
 }
 

@@ -245,6 +245,24 @@ def esc_cancels_and_restores(name):
           np.array_equal(coords(bpy.data.objects[name]), original))
 
 
+def cubic_switch_mid_run(name):
+    """Method switched to Cubic in the panel during a live run: the next steps are cubic, no new set-up;
+    the panel shows Cubic Lambda and its note (screenshot panel_cubic.png); Esc restores."""
+    obj = bpy.data.objects[name]
+    original = coords(obj)
+    yield from live_run(3)
+    op = live_operator()
+    factorizations = op.session.solver.factorization_count if op else None
+    obj.gauss_stylization.method = 'CUBIC'  # as if picked in the Method selector
+    yield from goes_on("live run goes on after switching to Cubic")
+    check("the switch reaches the solver without a new set-up",
+          op is not None and op.session.solver.method == "cubic"
+          and op.session.solver.factorization_count == factorizations)
+    yield from screenshot_panel("panel_cubic.png")
+    yield from end_with('ESC', "Esc after a switch to Cubic restores the mesh bit-exactly", name, original)
+    obj.gauss_stylization.method = 'GAUSS'
+
+
 def enter_keeps_and_undo_restores(name):
     original = coords(bpy.data.objects[name])
     yield from live_run(10)
@@ -482,9 +500,9 @@ def save_and_reopen_mid_run(name):
     os.remove(path)
 
 
-def screenshot_panel():
+def screenshot_panel(filename="panel.png"):
     os.makedirs(SHOTS, exist_ok=True)
-    path = os.path.join(SHOTS, "panel.png")
+    path = os.path.join(SHOTS, filename)
     if os.path.exists(path):
         os.remove(path)
     yield 0.3  # let the header text and panel redraw first
@@ -500,6 +518,7 @@ def scenario():
     yield 1.0  # first redraws
     yield from open_gauss_tab()
     yield from esc_cancels_and_restores(name)
+    yield from cubic_switch_mid_run(name)
     yield from enter_keeps_and_undo_restores(name)
     yield from mouse_buttons(name)
     yield from undo_keys_are_swallowed(name)

@@ -1,6 +1,6 @@
-"""The settings table, preset registry and size limits as gauss_core exports them (DEFAULTS, LIMITS,
-PRESETS, SIZE_LIMITS), as the build writes them for the add-on (core_facts.json), and as the solver
-enforces them."""
+"""The settings table, preset registry, methods and size limits as gauss_core exports them (DEFAULTS,
+LIMITS, PRESETS, METHODS, SIZE_LIMITS), as the build writes them for the add-on (core_facts.json), and as
+the solver enforces them."""
 import json
 import math
 
@@ -11,14 +11,14 @@ import gauss_core
 from conftest import BUILD
 from meshes import icosphere
 
-SETTINGS = ("lam", "sigma", "mu", "axis_contribution", "admm_iterations")
+SETTINGS = ("lam", "sigma", "mu", "axis_contribution", "admm_iterations", "cubic_lambda")
 INTEGER = {"admm_iterations"}
-LABEL = {"lam": "lambda", "admm_iterations": "ADMM iterations"}  # how error messages call them
+LABEL = {"lam": "lambda", "admm_iterations": "ADMM iterations", "cubic_lambda": "cubic lambda"}  # in messages
 V, F = icosphere(2)
 
 
 def test_defaults_and_limits_have_the_documented_keys_and_types():
-    assert set(gauss_core.DEFAULTS) == set(SETTINGS) | {"preset"}
+    assert set(gauss_core.DEFAULTS) == set(SETTINGS) | {"preset", "method"}
     assert set(gauss_core.LIMITS) == set(SETTINGS)
     for name in SETTINGS:
         lo, hi = gauss_core.LIMITS[name]
@@ -26,6 +26,12 @@ def test_defaults_and_limits_have_the_documented_keys_and_types():
         assert type(gauss_core.DEFAULTS[name]) is kind and type(lo) is kind and type(hi) is kind, name
         assert lo <= gauss_core.DEFAULTS[name] <= hi, name
     assert gauss_core.DEFAULTS["preset"] in gauss_core.PRESETS
+    assert gauss_core.DEFAULTS["method"] == "gauss"
+
+
+def test_the_method_registry_order_is_unchanged():
+    # Saved .blend files store the add-on's method enum by position in this tuple: append only.
+    assert gauss_core.METHODS == ("gauss", "cubic")
 
 
 def test_the_preset_registry_order_is_unchanged():
@@ -38,7 +44,8 @@ def test_the_preset_registry_order_is_unchanged():
 
 def test_core_facts_json_written_by_the_build_equals_the_exports():
     facts = json.loads((BUILD / "addon" / "gauss_stylization" / "core_facts.json").read_text())
-    assert set(facts) == {"DEFAULTS", "LIMITS", "PRESETS", "SIZE_LIMITS"}
+    assert set(facts) == {"DEFAULTS", "LIMITS", "PRESETS", "METHODS", "SIZE_LIMITS"}
+    assert tuple(facts["METHODS"]) == gauss_core.METHODS
     assert facts["SIZE_LIMITS"] == gauss_core.SIZE_LIMITS
     assert facts["DEFAULTS"] == gauss_core.DEFAULTS
     for name, value in facts["DEFAULTS"].items():  # 4.0 stays a float, 1 an int
@@ -50,6 +57,7 @@ def test_core_facts_json_written_by_the_build_equals_the_exports():
 def test_a_new_solver_and_keyword_defaults_use_the_defaults():
     s = gauss_core.Solver(V, F)
     assert s.lam == gauss_core.DEFAULTS["lam"]
+    assert s.method == gauss_core.DEFAULTS["method"] and s.cubic_lambda == gauss_core.DEFAULTS["cubic_lambda"]
     assert s.admm_iterations == gauss_core.DEFAULTS["admm_iterations"]
     (style,) = s.styles
     assert style.name == gauss_core.DEFAULTS["preset"]
@@ -60,8 +68,8 @@ def test_a_new_solver_and_keyword_defaults_use_the_defaults():
 
 def _apply(name, value):
     """Uses one setting where the module takes it, steps once, returns the vertices."""
-    if name in ("lam", "admm_iterations"):
-        s = gauss_core.Solver(V, F, **{name: value})
+    if name in ("lam", "admm_iterations", "cubic_lambda"):
+        s = gauss_core.Solver(V, F, method="cubic" if name == "cubic_lambda" else "gauss", **{name: value})
         setattr(s, name, value)
     else:
         s = gauss_core.Solver(V, F)

@@ -46,8 +46,18 @@ inline constexpr Setting mu{"mu", "mu", 1.0, 0.0, 1e3, false};
 inline constexpr Setting axis_contribution{"axis_contribution", "axis_contribution", 0.5, 0.0, 1.0, false};
 // ADMM rounds per step (Algorithm 1's inner loop).
 inline constexpr Setting admm_iterations{"admm_iterations", "ADMM iterations", 1, 1, 100, true};
+// lambda of the cubic method (Cubic Stylization, Liu & Jacobson 2019): the weight of its term
+// lambda * a_i * ||R_i n_i||_1 against ARAP in a unit bounding box; 0.2 is the reference
+// implementation's default. Gauss's lambda (above) weighs another energy, so each method has its own.
+inline constexpr Setting cubic_lambda{"cubic_lambda", "cubic lambda", 0.2, 0.0, 100.0, false};
 
-inline constexpr const Setting* all[] = {&lambda, &sigma, &mu, &axis_contribution, &admm_iterations};
+inline constexpr const Setting* all[] = {&lambda, &sigma, &mu, &axis_contribution, &admm_iterations, &cubic_lambda};
+
+// Stylization methods, by the names gauss_core takes (Solver(method=...)): the paper's "gauss" and
+// Cubic Stylization's "cubic" (cubic_local_step.h). A new method is appended, never reordered: the
+// add-on's enum stores these positions in saved files.
+inline constexpr const char* method_names[] = {"gauss", "cubic"};
+inline constexpr const char* default_method = "gauss";
 
 // Sizes (exported as gauss_core.SIZE_LIMITS and written to core_facts.json). A style's preferred
 // normals: set-up is O(K log K) up to this many (normal_field.h); bigger sets are refused with a
