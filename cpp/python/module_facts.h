@@ -42,6 +42,7 @@ inline void export_facts(py::module_& m) {
       limits[setting->name] = py::make_tuple(setting->min, setting->max);
     }
   }
+  for (const gauss::Option* option : settings::options) defaults[option->name] = option->default_value;
   defaults["preset"] = settings::default_preset;
   defaults["method"] = settings::default_method;
   py::list methods;

@@ -111,6 +111,7 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   rotation_.assign(num_vertices, Matrix3d::Identity());
   rotation_q_.assign(num_vertices, Eigen::Quaterniond::Identity());
   corner_rhs_.resize(nF);
+  iteration_ = FixedPointIteration(num_vertices);
 
   styles_.emplace_back(default_style());
   face_style_.assign(nF, 0);
@@ -268,11 +269,8 @@ void GaussSolver::assemble_rhs(bool with_edges) {
   });
 }
 
-void GaussSolver::step() {
-  const int threads = tuner_.next(parallel::max_threads());
-  const parallel::ScopedThreads scoped(threads);
-  const auto start = Clock::now();
-  auto t0 = start;
+void GaussSolver::local_global_step() {
+  auto t0 = Clock::now();
   const bool gauss = method_ == Method::gauss;
   if (gauss) {
     face_pass();
@@ -298,9 +296,36 @@ void GaussSolver::step() {
   t0 = Clock::now();
   laplacian_.solve(X_);
   timings_.solve = ms_since(t0);
+}
+
+void GaussSolver::step() {
+  const int threads = tuner_.next(parallel::max_threads());
+  const parallel::ScopedThreads scoped(threads);
+  const auto start = Clock::now();
+  // The normalized frame's longest bounding-box side is 1.
+  iteration_.advance(X_, rest_, 1.0, [this] {
+    local_global_step();
+    if (keep_volume_) volume_.restore(topo_, X_);
+  });
   ++step_count_;
   tuner_.record(threads, ms_since(start));
   timings_.threads = threads;
+}
+
+int GaussSolver::step_until(double tolerance, int max_steps) {
+  if (max_steps < 0) throw std::invalid_argument("the number of steps must be >= 0");
+  set_tolerance(tolerance);
+  int taken = 0;
+  while (taken < max_steps && !converged()) {
+    step();
+    ++taken;
+  }
+  return taken;
+}
+
+void GaussSolver::set_tolerance(double tolerance) {
+  settings::tolerance.check(tolerance);
+  tolerance_ = tolerance;
 }
 
 void GaussSolver::reset() {
@@ -310,6 +335,7 @@ void GaussSolver::reset() {
   if (cubic_ready_) cubic_.reset();
   laplacian_.place_pins(X_);
   step_count_ = 0;
+  iteration_.invalidate();
 }
 
 }  // namespace gauss

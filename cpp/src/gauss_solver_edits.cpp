@@ -1,5 +1,6 @@
-// GaussSolver between steps: styles, parameters and pins. Everything here takes effect at the next
-// step; only set_pins() re-factors (see constrained_laplacian.h).
+// GaussSolver between steps: styles, parameters, pins and the current vertices. Everything here takes
+// effect at the next step; only set_pins() re-factors (see constrained_laplacian.h).
+#include <algorithm>
 #include <cstdint>
 #include <sstream>
 #include <stdexcept>
@@ -23,6 +24,7 @@ void GaussSolver::set_styles(std::vector<PreferenceFunction> styles) {
     }
   styles_ = std::move(styles);
   update_cubic_styles();
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_style(int index, PreferenceFunction style) {
@@ -33,6 +35,7 @@ void GaussSolver::set_style(int index, PreferenceFunction style) {
   }
   styles_[index] = std::move(style);
   update_cubic_styles();
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_face_styles(const int64_t* style_of_input_face, int count) {
@@ -51,17 +54,25 @@ void GaussSolver::set_face_styles(const int64_t* style_of_input_face, int count)
   for (size_t f = 0; f < topo_.faces.size(); ++f)
     face_style_[f] = static_cast<int>(style_of_input_face[topo_.input_face[f]]);
   update_cubic_styles();
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_lambda(double lambda) {
   settings::lambda.check(lambda);
   // Eq. 27: lambda only scales the right-hand side, so the factor stays valid.
   lambda_ = lambda;
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_admm_iterations(int n) {
   settings::admm_iterations.check(n);
   admm_iterations_ = n;
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_keep_volume(bool on) {
+  keep_volume_ = on;
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_method(Method method) {
@@ -72,11 +83,13 @@ void GaussSolver::set_method(Method method) {
     update_cubic_styles();
   }
   method_ = method;
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_cubic_lambda(double lambda) {
   settings::cubic_lambda.check(lambda);
   cubic_lambda_ = lambda;
+  iteration_.invalidate();
 }
 
 void GaussSolver::update_cubic_styles() {
@@ -161,9 +174,11 @@ void GaussSolver::apply_pins(const std::vector<int64_t>& pinned, const double* p
   // definite), the solver keeps its previous pins and factor.
   laplacian_ = ConstrainedLaplacian(topo_, edge_weight_, rest_, internal, to_solver_frame(targets), &progress);
   ++factorization_count_;
+  volume_ = VolumeKeeper(topo_, rest_, internal);
   pinned_input_ = pinned;
   pin_targets_ = std::move(targets);
   laplacian_.place_pins(X_);
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_pin_positions(const double* pin_positions, int count) {
@@ -176,6 +191,38 @@ void GaussSolver::set_pin_positions(const double* pin_positions, int count) {
   laplacian_.set_pin_positions(to_solver_frame(targets));
   pin_targets_ = std::move(targets);
   laplacian_.place_pins(X_);
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_vertices(const double* V, int count) {
+  const int nV = topo_.num_vertices;
+  if (count != nV || V == nullptr) {
+    std::ostringstream msg;
+    msg << "vertices must have one row per vertex (" << nV << "), got " << count;
+    throw std::invalid_argument(msg.str());
+  }
+  for (int old = 0; old < nV; ++old) {  // all checks first: a refused call changes nothing
+    const Vector3d p(V[3 * old], V[3 * old + 1], V[3 * old + 2]);
+    if (!p.allFinite()) {
+      std::ostringstream msg;
+      msg << "vertex " << old << " has a NaN or infinite coordinate";
+      throw std::invalid_argument(msg.str());
+    }
+    if (topo_.component[new_of_old_[old]] >= 0 &&
+        !((p - center_).cwiseAbs().maxCoeff() <= settings::max_pin_distance * scale_)) {
+      std::ostringstream msg;
+      msg << "vertex " << old << " is too far from the mesh (more than " << settings::max_pin_distance
+          << " times its size)";
+      throw std::invalid_argument(msg.str());
+    }
+  }
+  for (int old = 0; old < nV; ++old) {
+    const int v = new_of_old_[old];
+    if (topo_.component[v] >= 0) X_[v] = (Vector3d(V[3 * old], V[3 * old + 1], V[3 * old + 2]) - center_) / scale_;
+  }
+  laplacian_.place_pins(X_);
+  std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
+  iteration_.invalidate();
 }
 
 }  // namespace gauss

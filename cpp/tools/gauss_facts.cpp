@@ -1,8 +1,8 @@
-// Prints the solver's settings table, preset registry, methods and size limits (settings.h, presets.h) as
-// JSON: the same facts gauss_core exports as DEFAULTS, LIMITS, PRESETS, METHODS and SIZE_LIMITS. The
-// build writes this to the staged add-on's core_facts.json, which the add-on reads when the native
-// module cannot be loaded (another Python, a missing runtime): its properties then still register with
-// the solver's defaults and ranges.
+// Prints the solver's settings table, its options, preset registry, methods and size limits (settings.h,
+// presets.h) as JSON: the same facts gauss_core exports as DEFAULTS, LIMITS, PRESETS, METHODS and
+// SIZE_LIMITS. The build writes this to the staged add-on's core_facts.json, which the add-on reads when
+// the native module cannot be loaded (another Python, a missing runtime): its properties then still
+// register with the solver's defaults and ranges.
 #include <cstdio>
 #include <string>
 
@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
   std::printf("{\n  \"DEFAULTS\": {");
   for (const gauss::Setting* s : settings::all)
     std::printf("\"%s\": %s, ", s->name, number(s->default_value, s->integer).c_str());
+  for (const gauss::Option* o : settings::options)
+    std::printf("\"%s\": %s, ", o->name, o->default_value ? "true" : "false");
   std::printf("\"preset\": \"%s\", \"method\": \"%s\"},\n  \"LIMITS\": {", settings::default_preset,
               settings::default_method);
   bool first = true;

@@ -100,7 +100,7 @@ def facts():
 
 
 def read_facts_file(path, import_error=None):
-    """Facts from a core_facts.json ({"DEFAULTS": .., "LIMITS": .., "PRESETS": .., "METHODS": ..})."""
+    """Facts from a core_facts.json (keys DEFAULTS, LIMITS, PRESETS, METHODS, SIZE_LIMITS)."""
     try:
         with open(path, encoding="utf-8") as handle:
             data = json.load(handle)

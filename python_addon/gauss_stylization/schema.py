@@ -4,8 +4,8 @@ The PropertyGroups (properties.py), the JSON round-trip and the settings writer
 (settings_io.py), the validation before a run (validation.py), what a live run
 does when a setting changes (session.py) and the panel rows (ui.py) are all
 derived from these tables. Defaults and hard ranges of what the solver owns
-(lam, sigma, mu, axis_contribution, admm_iterations, cubic_lambda), the preset
-registry and the methods come from the solver (native.facts()), never from here.
+(lam, sigma, mu, axis_contribution, admm_iterations, cubic_lambda, tolerance), the
+preset registry and the methods come from the solver (native.facts()), never from here.
 
 A new setting is one line in its table (kinds: fields.py), plus its use in the
 solver call for slot fields (styles.make_style); see python_addon/README.md.
@@ -113,6 +113,9 @@ OBJECT = (
           soft=(0.0, 20.0), live=Live.SETTER, panel=Panel.SOLVER, relevant=_not_cubic),
     Int("admm_iterations", "ADMM Iterations", "Inner iterations per solver step",
         live=Live.SETTER, panel=Panel.SOLVER, relevant=_not_cubic),
+    Float("tolerance", "Tolerance", "A run has converged when a step moves the mesh by less than this "
+          "fraction of how far it has moved from its original shape",
+          soft=(1e-4, 0.1), panel=Panel.SOLVER),
     Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode",
         default=100, hard=(0, 100000), panel=Panel.SOLVER),
     Choice("output", "Output", "Where the stylized coordinates go",

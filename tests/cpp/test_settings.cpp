@@ -40,6 +40,7 @@ bool apply_and_step(const Setting& s, double value) {
     solver.set_cubic_lambda(value);
     solver.set_method(gauss::Method::cubic);
   }
+  if (&s == &settings::tolerance) solver.set_tolerance(value);
   solver.set_styles({g});
   solver.step();
   std::vector<double> out(m.V.size());

@@ -11,14 +11,15 @@ import gauss_core
 from conftest import BUILD
 from meshes import icosphere
 
-SETTINGS = ("lam", "sigma", "mu", "axis_contribution", "admm_iterations", "cubic_lambda")
+SETTINGS = ("lam", "sigma", "mu", "axis_contribution", "admm_iterations", "cubic_lambda", "tolerance")
 INTEGER = {"admm_iterations"}
+OPTIONS = ("keep_volume",)  # on/off: a bool default, no limits
 LABEL = {"lam": "lambda", "admm_iterations": "ADMM iterations", "cubic_lambda": "cubic lambda"}  # in messages
 V, F = icosphere(2)
 
 
 def test_defaults_and_limits_have_the_documented_keys_and_types():
-    assert set(gauss_core.DEFAULTS) == set(SETTINGS) | {"preset", "method"}
+    assert set(gauss_core.DEFAULTS) == set(SETTINGS) | set(OPTIONS) | {"preset", "method"}
     assert set(gauss_core.LIMITS) == set(SETTINGS)
     for name in SETTINGS:
         lo, hi = gauss_core.LIMITS[name]
@@ -27,6 +28,8 @@ def test_defaults_and_limits_have_the_documented_keys_and_types():
         assert lo <= gauss_core.DEFAULTS[name] <= hi, name
     assert gauss_core.DEFAULTS["preset"] in gauss_core.PRESETS
     assert gauss_core.DEFAULTS["method"] == "gauss"
+    for name in OPTIONS:
+        assert type(gauss_core.DEFAULTS[name]) is bool, name
 
 
 def test_the_method_registry_order_is_unchanged():
@@ -59,6 +62,9 @@ def test_a_new_solver_and_keyword_defaults_use_the_defaults():
     assert s.lam == gauss_core.DEFAULTS["lam"]
     assert s.method == gauss_core.DEFAULTS["method"] and s.cubic_lambda == gauss_core.DEFAULTS["cubic_lambda"]
     assert s.admm_iterations == gauss_core.DEFAULTS["admm_iterations"]
+    assert s.tolerance == gauss_core.DEFAULTS["tolerance"]
+    for name in OPTIONS:
+        assert getattr(s, name) is gauss_core.DEFAULTS[name], name
     (style,) = s.styles
     assert style.name == gauss_core.DEFAULTS["preset"]
     for made in (style, gauss_core.Style.preset("cone"), gauss_core.Style([[0, 0, 1]])):
@@ -68,7 +74,7 @@ def test_a_new_solver_and_keyword_defaults_use_the_defaults():
 
 def _apply(name, value):
     """Uses one setting where the module takes it, steps once, returns the vertices."""
-    if name in ("lam", "admm_iterations", "cubic_lambda"):
+    if name in ("lam", "admm_iterations", "cubic_lambda", "tolerance"):
         s = gauss_core.Solver(V, F, method="cubic" if name == "cubic_lambda" else "gauss", **{name: value})
         setattr(s, name, value)
     else:

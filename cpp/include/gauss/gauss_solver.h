@@ -25,11 +25,13 @@
 
 #include "gauss/constrained_laplacian.h"
 #include "gauss/cubic_local_step.h"
+#include "gauss/fixed_point_iteration.h"
 #include "gauss/mesh_topology.h"
 #include "gauss/preference_function.h"
 #include "gauss/progress.h"
 #include "gauss/settings.h"
 #include "gauss/thread_tuner.h"
+#include "gauss/volume_keeper.h"
 
 namespace gauss {
 
@@ -83,6 +85,10 @@ class GaussSolver {
   const std::vector<Eigen::Vector3d>& pin_positions() const { return pin_targets_; }  // #P by 3, caller's frame
   void set_admm_iterations(int n);
   int admm_iterations() const { return admm_iterations_; }
+  // Keep Volume (settings::keep_volume, volume_keeper.h): after each step, components without a pin
+  // are scaled back to their rest volume (closed) or area (open).
+  void set_keep_volume(bool on);
+  bool keep_volume() const { return keep_volume_; }
 
   // --- Method: the next step's local step; pins, styles and the factorization stay. ---
   // The first switch to Method::cubic prepares its per-vertex data (O(#V), no factorization). With it,
@@ -97,8 +103,29 @@ class GaussSolver {
 
   // One iteration of Algorithm 1.
   void step();
+  // Steps until a step's reldV is below `tolerance` (settings::tolerance), at most max_steps (>= 0)
+  // times; returns the number of steps taken (0 if converged() already holds for this tolerance).
+  // Sets tolerance() to `tolerance`. Throws std::invalid_argument (before stepping) on a bad argument.
+  int step_until(double tolerance, int max_steps);
   // Current vertices := rest vertices (pins at their targets); step count := 0.
   void reset();
+  // Current vertices := V (count by 3, caller's frame and numbering, count == #V): a warm start for
+  // the next step, e.g. the previous frame's result in an animation bake. The rest shape, styles and
+  // factorization stay; pins stay at their targets and vertices no face uses at their input
+  // positions; the step count is kept. What the iteration carried over from earlier steps (the
+  // rotation fit's warm start) is reset as reset() does, so the steps that follow depend on V alone.
+  // Throws std::invalid_argument, changing nothing, unless every coordinate is finite and every vertex
+  // that faces use lies within settings::max_pin_distance times the mesh's size of it.
+  void set_vertices(const double* V, int count);
+
+  // --- Convergence (fixed_point_iteration.h). Every edit above (styles, lambda, ADMM rounds, keep
+  // volume, pins, their targets, reset, set_vertices) changes the map or the iterate, so it makes
+  // last_reldv() +infinity. ---
+  double last_reldv() const { return iteration_.last_reldv(); }  // +infinity before the first step
+  // The tolerance converged() compares with: settings::tolerance (checked), set here or by step_until().
+  void set_tolerance(double tolerance);
+  double tolerance() const { return tolerance_; }
+  bool converged() const { return last_reldv() < tolerance_; }
 
   // --- Read-outs. ---
   void copy_vertices(double* out) const;  // #V by 3, caller's frame
@@ -120,6 +147,8 @@ class GaussSolver {
   void compute_rest_quantities();
   // set_pins' work inside a set-up that `progress` already reports (the constructor's or set_pins').
   void apply_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress& progress);
+  // One local-global step on X_ (Algorithm 1: local step, then the global solve), timing its phases.
+  void local_global_step();
   void face_pass();
   void fit_rotations();  // rotation_ from face_cov_
   void admm_round(bool first_round);
@@ -167,6 +196,8 @@ class GaussSolver {
   std::vector<Eigen::Vector3d> pin_targets_;         // caller's frame (returned verbatim)
   ConstrainedLaplacian laplacian_;                   // internal numbering, normalized frame
   int factorization_count_ = 0;
+  VolumeKeeper volume_;                              // rest sizes of the components without a pin
+  bool keep_volume_ = settings::keep_volume.default_value;
 
   // Per-step buffers (allocated once).
   std::vector<Eigen::Vector3d> normal_star_;                 // #F
@@ -180,6 +211,8 @@ class GaussSolver {
   StepTimings timings_;
   ThreadTuner tuner_;
   int step_count_ = 0;
+  FixedPointIteration iteration_;  // reldV (and what else wraps a step)
+  double tolerance_ = settings::tolerance.default_value;
 };
 
 }  // namespace gauss
