@@ -12,18 +12,13 @@
 #include "gauss/node_grid.h"
 #include "gauss/parallel.h"
 #include "gauss/sphere_lattice.h"
+#include "test_directions.h"
 
 namespace {
 
 using Eigen::Vector3d;
 
-std::vector<Vector3d> random_directions(int n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> normal;
-  std::vector<Vector3d> out(n);
-  for (Vector3d& d : out) d = Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-  return out;
-}
+using gauss_test::random_directions;
 
 TEST(SphereLattice, HasTheGeodesicCountsNeighboursAndNearestNodes) {
   for (int n : {1, 2, 5, 32}) {
