@@ -18,11 +18,13 @@ bl_info = {
 if "bpy" in locals():  # F8 / script reload: reload the submodules too
     import importlib
     for _module in (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
-                    rest_store, settings_io, session, runs, viewport, operators, slot_operators, ui):
+                    rest_store, settings_io, undo_guard, runs, progress, solver_setup, session, targets,
+                    live_run, scripted_run, viewport, modal_events, operators, slot_operators, ui):
         importlib.reload(_module)
 else:
     from . import (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
-                   rest_store, settings_io, session, runs, viewport, operators, slot_operators, ui)
+                   rest_store, settings_io, undo_guard, runs, progress, solver_setup, session, targets,
+                   live_run, scripted_run, viewport, modal_events, operators, slot_operators, ui)
 
 import bpy
 

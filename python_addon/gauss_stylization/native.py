@@ -71,6 +71,7 @@ def load_failure_message(exc):
 
 _core = None
 _facts = None
+_ring_presets = None
 
 
 def core():
@@ -97,6 +98,19 @@ def facts():
             _facts = _checked_facts(module.DEFAULTS, module.LIMITS, module.PRESETS, module.METHODS,
                                     module.SIZE_LIMITS)
     return _facts
+
+
+def ring_presets():
+    """Names of the solver's presets whose style has rings of preferred normals (where a style's
+    axis_contribution acts), asked from the solver itself; None when the module cannot load."""
+    global _ring_presets
+    if _ring_presets is None:
+        try:
+            module = core()
+        except NativeModuleError:
+            return None
+        _ring_presets = frozenset(name for name in module.PRESETS if len(module.Style.preset(name).ring_offsets))
+    return _ring_presets
 
 
 def read_facts_file(path, import_error=None):

@@ -20,6 +20,9 @@ FACTS = native.facts()
 CUSTOM = 'CUSTOM'
 REGION_THRESHOLD = 0.5  # a face is in a slot's region when its vertex weights average above this
 PIN_THRESHOLD = 0.5     # a vertex is pinned when its pin-group weight is above this
+# A scripted run of 0 steps runs until converged; it stops after this many steps if it has not by then
+# (a mesh that keeps changing, a Tolerance below what the shape reaches), so a script always ends.
+UNTIL_CONVERGED_CAP = 5000
 CUSTOM_NUMBER = 99  # enum number of Custom in saved files; presets are numbered 0, 1, ... in PRESETS order
 
 
@@ -74,6 +77,12 @@ def _not_custom(slot):
     return slot.preset != CUSTOM
 
 
+def _has_rings(slot):
+    """Does the slot's preset have rings (Cylinder, Cone, ...: whatever the solver says)?"""
+    rings = native.ring_presets()
+    return slot.preset != CUSTOM and (rings is None or slot.preset.lower() in rings)
+
+
 # GaussNormal: one preferred normal of a Custom style.
 NORMAL = (
     Direction("vector", "Normal", "Preferred face normal (object space, need not be unit length)",
@@ -92,8 +101,10 @@ SLOT = (
           soft=(0.0, 10.0), live=Live.STYLES, panel=Panel.SLOT),
     Euler("orientation", "Orientation", "Rotation of the preferred normals (object space)",
           live=Live.STYLES, panel=Panel.SLOT, text="Rotation"),
+    # Checked for every preset (a value saved with a cube must be usable once it is a cone),
+    # shown only where it acts.
     Float("axis_contribution", "Axis Contribution", "Weight of the axis normals for presets that have them",
-          live=Live.STYLES, panel=Panel.SLOT, text="Axis Weight", relevant=_not_custom),
+          live=Live.STYLES, panel=Panel.SLOT, text="Axis Weight", relevant=_not_custom, shown=_has_rings),
     VertexGroup("vertex_group", "Vertex Group", "Region of this style (faces whose vertex weights average "
                 "above %g); empty means the whole mesh" % REGION_THRESHOLD,
                 live=Live.REGIONS, panel=Panel.SLOT, text="Region"),
@@ -113,10 +124,11 @@ OBJECT = (
           soft=(0.0, 20.0), live=Live.SETTER, panel=Panel.SOLVER, relevant=_not_cubic),
     Int("admm_iterations", "ADMM Iterations", "Inner iterations per solver step",
         live=Live.SETTER, panel=Panel.SOLVER, relevant=_not_cubic),
-    Float("tolerance", "Tolerance", "A run has converged when a step moves the mesh by less than this "
-          "fraction of how far it has moved from its original shape",
-          soft=(1e-4, 0.1), panel=Panel.SOLVER),
-    Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode",
+    Float("tolerance", "Tolerance", "A run has converged, and stops, when a step moves the mesh by less than "
+          "this fraction of how far it has moved from its original shape", soft=(1e-4, 0.1), live=Live.SETTER,
+          panel=Panel.SOLVER),
+    Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode; "
+        "0: until converged (Tolerance), at most %d steps" % UNTIL_CONVERGED_CAP,
         default=100, hard=(0, 100000), panel=Panel.SOLVER),
     Choice("output", "Output", "Where the stylized coordinates go",
            (('MESH', "Mesh", "Move the vertices of the mesh itself", 0),

@@ -102,6 +102,10 @@ LIVE_CHANGES = {
     ("object", "cubic_lambda"): ({}, dict(method='CUBIC'), 0.8),
     ("object", "admm_iterations"): ({}, {}, 3),
 }
+# Live settings that change what the solver says about the shape, not the shape: the value changed to.
+LIVE_READOUTS = {
+    ("object", "tolerance"): 0.25,  # what `converged` compares with
+}
 
 
 def _live_fields(addon):
@@ -112,7 +116,21 @@ def _live_fields(addon):
 
 
 def test_every_live_setting_has_a_case_below(addon):
-    assert set(LIVE_CHANGES) == _live_fields(addon)
+    assert set(LIVE_CHANGES) | set(LIVE_READOUTS) == _live_fields(addon)
+
+
+@pytest.mark.parametrize("owner, name", sorted(LIVE_READOUTS), ids=["-".join(k) for k in sorted(LIVE_READOUTS)])
+def test_a_readout_setting_changed_mid_run_reaches_the_solver(addon, owner, name):
+    obj = helpers.suzanne(levels=0)
+    helpers.add_slot(obj, 'CUBE')
+    settings = obj.gauss_stylization
+    run = addon.session.Session(obj)
+    run.step(2)
+    field = addon.schema.field(addon.schema.OBJECT, name)
+    field.write(settings, LIVE_READOUTS[owner, name])
+    assert run.sync_settings() is None
+    assert getattr(run.solver, name) == field.read(settings)
+    run.cancel()
 
 
 @pytest.mark.parametrize("owner, name", sorted(LIVE_CHANGES), ids=["-".join(k) for k in sorted(LIVE_CHANGES)])
@@ -173,6 +191,17 @@ def test_panel_rows_follow_the_schema(addon):
                                              "vertex_group"]
     assert _slot_rows(addon, 'CUSTOM') == ["preset", "sigma", "mu", "orientation", "vertex_group",
                                            "custom_normals"]
+
+
+def test_axis_weight_is_shown_only_for_presets_the_solver_gives_rings(addon):
+    # Issue 14 item 6: it was shown for every preset but acts only where there are rings.
+    gauss_core = addon.native.core()
+    assert "axis_contribution" not in _slot_rows(addon, 'CUBE')
+    for name in gauss_core.PRESETS:
+        has_rings = len(gauss_core.Style.preset(name).ring_offsets) > 0
+        assert ("axis_contribution" in _slot_rows(addon, name.upper())) == has_rings, name
+    assert {name for name in gauss_core.PRESETS if len(gauss_core.Style.preset(name).ring_offsets)} == \
+        {"cylinder", "cone", "double_cone"}
 
 
 _WITHOUT_MODULE = """

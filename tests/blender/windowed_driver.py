@@ -7,7 +7,8 @@ click below is simulated with Window.event_simulate, as a person would do it.
 The scenario runs as a generator stepped by bpy.app.timers, so Blender's event
 loop (modal ticks, redraws) runs between the steps. At the end it prints
 "N passed, M failed", writes that line to BUILD_DIR/screenshots/windowed_result.txt
-and quits Blender itself.
+and quits Blender itself. Other drivers (windowed_live_run.py) import the helpers
+and run their own scenarios with start().
 """
 
 import os
@@ -148,11 +149,12 @@ def live_operator():
 
 
 def wait_steps(count, limit=30.0):
-    """Generator: wait until the live run has done ``count`` steps."""
+    """Generator: wait until the live run has done ``count`` steps or its object has converged (a
+    converged object is not stepped until something changes: the run goes on without steps)."""
     deadline = time.monotonic() + limit
     while time.monotonic() < deadline:
         op = live_operator()
-        if op is not None and op.session.steps >= count:
+        if op is not None and op.session is not None and (op.session.steps >= count or op.session.converged):
             return
         yield 0.05
 
@@ -177,9 +179,11 @@ def live_run(steps):
 def goes_on(name, more=3):
     """Generator: check ``name`` = the live run does ``more`` further steps."""
     op = live_operator()
-    steps = op.session.steps if op else 0
+    steps = op.session.steps if op and op.session else 0
     yield from wait_steps(steps + more)
-    check(name, live_operator() is not None and live_operator().session.steps >= steps + more)
+    op = live_operator()
+    check(name, op is not None and op.session is not None and
+          (op.session.steps >= steps + more or op.session.converged))
 
 
 def end_with(key, name, obj_name, expected):
@@ -534,37 +538,45 @@ def scenario():
 
 # -- runner -------------------------------------------------------------------------
 
-def finish():
+def finish(result_name="windowed_result.txt"):
     failed = sum(1 for _, passed, _ in results if not passed)
     line = "%d passed, %d failed" % (len(results) - failed, failed)
     if not results:
         line = "0 passed, 1 failed"
     print("windowed:", line, flush=True)
     os.makedirs(SHOTS, exist_ok=True)
-    with open(os.path.join(SHOTS, "windowed_result.txt"), "w") as handle:
+    with open(os.path.join(SHOTS, result_name), "w") as handle:
         handle.write(line + "\n")
     with bpy.context.temp_override(window=window()):
         bpy.ops.wm.quit_blender()
 
 
-def runner(steps, started):
+def runner(steps, started, result_name="windowed_result.txt", time_limit=TIME_LIMIT):
+    """A bpy.app.timers callback stepping the scenario generator ``steps``; at the end (or after
+    ``time_limit`` seconds, or on an exception) the summary goes to BUILD_DIR/screenshots/``result_name``."""
     def advance():
         try:
-            if time.monotonic() - started > TIME_LIMIT:
-                check("scenario finished in time", False, "over %.0f s" % TIME_LIMIT)
-                finish()
+            if time.monotonic() - started > time_limit:
+                check("scenario finished in time", False, "over %.0f s" % time_limit)
+                finish(result_name)
                 return None
             delay = next(steps)
             return float(delay)
         except StopIteration:
-            finish()
+            finish(result_name)
         except Exception:
             traceback.print_exc()
             check("scenario ran without an exception", False)
-            finish()
+            finish(result_name)
         return None
     return advance
 
 
-# Persistent: loading a file (save_and_reopen_mid_run) removes all other timers.
-bpy.app.timers.register(runner(scenario(), time.monotonic()), first_interval=1.0, persistent=True)
+def start(scenario_steps, result_name="windowed_result.txt", time_limit=TIME_LIMIT):
+    # Persistent: loading a file (save_and_reopen_mid_run) removes all other timers.
+    bpy.app.timers.register(runner(scenario_steps, time.monotonic(), result_name, time_limit),
+                            first_interval=1.0, persistent=True)
+
+
+if __name__ == "__main__":  # run by Blender with -P; other drivers import the helpers above
+    start(scenario())
