@@ -18,9 +18,11 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import default_scene  # noqa: E402
 import render_kit  # noqa: E402
+import scene_bake  # noqa: E402
 import scene_cube_stays_cube  # noqa: E402
 import scene_cubic_vs_gauss  # noqa: E402
 import scene_extreme  # noqa: E402
+import scene_keep_volume  # noqa: E402
 import scene_kit  # noqa: E402
 import scene_multistyle  # noqa: E402
 import scene_pins  # noqa: E402
@@ -28,7 +30,7 @@ import scene_sigma  # noqa: E402
 import scene_styles  # noqa: E402
 
 SCENES = (default_scene, scene_cube_stays_cube, scene_styles, scene_sigma, scene_pins,
-          scene_multistyle, scene_extreme, scene_cubic_vs_gauss)
+          scene_multistyle, scene_extreme, scene_cubic_vs_gauss, scene_bake, scene_keep_volume)
 
 
 def main():

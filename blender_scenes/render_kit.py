@@ -219,8 +219,19 @@ def script_args():
     return argv[argv.index("--") + 1:] if "--" in argv else []
 
 
+_out_dir = None
+
+
+def output_folder():
+    """The folder the scene being built is saved to (for files it writes next to its .blend)."""
+    return _out_dir
+
+
 def render_scene(scene, out_dir):
     """Build ``scene`` (a scene module) in an empty scene, render and save it. Returns the PNG path."""
+    global _out_dir
+    _out_dir = out_dir
+    os.makedirs(out_dir, exist_ok=True)
     start = time.perf_counter()
     print("== %s" % scene.NAME)
     scene_kit.reset_scene()

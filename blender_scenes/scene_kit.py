@@ -12,7 +12,7 @@ import time
 
 import bpy
 import numpy as np
-from mathutils import Matrix
+from mathutils import Matrix, Vector
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
@@ -109,6 +109,7 @@ def suzanne(name="Suzanne", subdivisions=2):
 # (after the importer's Y-up -> Z-up conversion) and turn them three-quarters to the camera.
 SPOT = ("small/spot_triangulated_2930.obj", (('X', 90), ('Z', 120)))  # public domain (Keenan Crane)
 BUNNY = ("bunny/bunny_odedstein_3301.obj", (('X', 90), ('Z', 20)))   # Stanford 3D Scanning Repository
+BUNNY_WATERTIGHT = ("bunny/bunny_watertight_34834.obj", (('Z', 20),))  # bun_zipper, holes filled; stored Z-up
 SPOT_HEAD = np.array([-math.sin(math.radians(120)), math.cos(math.radians(120)), 0.0])  # where Spot looks
 
 
@@ -130,6 +131,19 @@ def demo_mesh(which, name, size=2.0, fallback_subdivisions=1):
 def coords(obj):
     """(#V,3) float32 vertex coordinates, object space."""
     return addon.mesh_io.read_vertex_coords(obj.data)
+
+
+def enclosed_volume(co, triangles):
+    """The volume a closed mesh encloses: the sum over its triangles ((#T,3) indices into the (#V,3)
+    coordinates ``co``) of a . (b x c) / 6, in float64."""
+    co = np.asarray(co, np.float64)
+    a, b, c = (co[corner] for corner in np.asarray(triangles).T)
+    return float(np.einsum("ij,ij->", a, np.cross(b, c)) / 6.0)
+
+
+def volume(obj):
+    """enclosed_volume() of ``obj``'s mesh (object space, its loop triangles)."""
+    return enclosed_volume(coords(obj), addon.mesh_io.read_loop_triangles(obj.data)[0])
 
 
 def normalize(obj, size=2.0):
@@ -175,6 +189,53 @@ def vertex_group(obj, name, select):
     members = np.flatnonzero(select(coords(obj))).tolist()
     obj.vertex_groups.new(name=name).add(members, 1.0, 'REPLACE')
     return members
+
+
+# -- animation ---------------------------------------------------------------------------
+
+def bending_rig(obj, pivot, direction, bent_weights, degrees, frames):
+    """Skin ``obj`` to a two-bone armature "Rig" and animate it: bone "Fixed" ends at ``pivot``, bone
+    "Bent" starts there and points along ``direction``; vertex weights ``bent_weights`` ((#V,) in 0..1)
+    go to "Bent", the rest to "Fixed". "Bent" turns about its own X axis (across ``direction``, level
+    for a level bone), linearly from 0 degrees at frames[0] to ``degrees`` at frames[1]. Returns the rig."""
+    pivot, direction = Vector(pivot), Vector(direction).normalized()
+    rig = link(bpy.data.objects.new("Rig", bpy.data.armatures.new("Rig")))
+    activate(rig)
+    bpy.ops.object.mode_set(mode='EDIT')
+    fixed = rig.data.edit_bones.new("Fixed")
+    fixed.head, fixed.tail = pivot - direction, pivot
+    bent = rig.data.edit_bones.new("Bent")
+    bent.head, bent.tail = pivot, pivot + direction
+    bent.parent = fixed
+    bpy.ops.object.mode_set(mode='OBJECT')
+    for name, weights in (("Fixed", 1.0 - np.asarray(bent_weights)), ("Bent", np.asarray(bent_weights))):
+        group = obj.vertex_groups.new(name=name)
+        for index in np.flatnonzero(weights > 0):
+            group.add([int(index)], float(weights[index]), 'REPLACE')
+    obj.modifiers.new("Armature", 'ARMATURE').object = rig
+    bone = rig.pose.bones["Bent"]
+    bone.rotation_mode = 'XYZ'
+    for frame, angle in zip(frames, (0.0, degrees)):
+        bone.rotation_euler = (math.radians(angle), 0.0, 0.0)
+        bone.keyframe_insert("rotation_euler", frame=frame)
+    for curve in rig.animation_data.action.fcurves:
+        for point in curve.keyframe_points:
+            point.interpolation = 'LINEAR'
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = frames
+    scene.frame_set(frames[0])
+    activate(obj)
+    return rig
+
+
+def snapshot(obj, name):
+    """A new static object holding ``obj`` as shown now (modifiers applied), same transform."""
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    mesh = bpy.data.meshes.new_from_object(obj.evaluated_get(depsgraph), preserve_all_data_layers=True,
+                                           depsgraph=depsgraph)
+    copy = link(bpy.data.objects.new(name, mesh))
+    copy.matrix_world = obj.matrix_world
+    return copy
 
 
 # -- stylization -------------------------------------------------------------------------

@@ -17,18 +17,21 @@ bl_info = {
 # Bottom of the import order first: each module imports only modules listed before it.
 if "bpy" in locals():  # F8 / script reload: reload the submodules too
     import importlib
-    for _module in (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
-                    rest_store, settings_io, undo_guard, runs, progress, solver_setup, session, targets,
-                    live_run, scripted_run, viewport, modal_events, operators, slot_operators, ui):
+    for _module in (errors, native, pc2, fields, schema, properties, mesh_io, source, styles, validation,
+                    cache_modifier, output, rest_store, settings_io, undo_guard, runs, progress, solver_setup,
+                    session, targets, live_run, scripted_run, viewport, modal_events, operators, slot_operators,
+                    ui, bake, bake_operators, bake_ui):
         importlib.reload(_module)
 else:
-    from . import (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
-                   rest_store, settings_io, undo_guard, runs, progress, solver_setup, session, targets,
-                   live_run, scripted_run, viewport, modal_events, operators, slot_operators, ui)
+    from . import (errors, native, pc2, fields, schema, properties, mesh_io, source, styles, validation,
+                   cache_modifier, output, rest_store, settings_io, undo_guard, runs, progress, solver_setup,
+                   session, targets, live_run, scripted_run, viewport, modal_events, operators, slot_operators,
+                   ui, bake, bake_operators, bake_ui)
 
 import bpy
 
-classes = properties.classes + operators.classes + slot_operators.classes + ui.classes
+classes = (properties.classes + operators.classes + slot_operators.classes + bake_operators.classes + ui.classes
+           + bake_ui.classes)
 
 
 def register():

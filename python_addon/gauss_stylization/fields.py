@@ -11,7 +11,8 @@ import math
 
 import numpy as np
 from bpy.props import (
-    CollectionProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty, StringProperty,
+    BoolProperty, CollectionProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty,
+    StringProperty,
 )
 
 from . import native
@@ -34,6 +35,7 @@ class Panel(enum.Enum):
     STYLES = "styles"   # Styles sub-panel, under the slot list
     SLOT = "slot"       # Styles sub-panel, the active slot's settings
     SOLVER = "solver"   # Solver sub-panel
+    BAKE = "bake"       # Bake sub-panel (bake_ui.py)
 
 
 class Where:
@@ -140,6 +142,23 @@ class Int(_Number):
         """label, tooltip: for another property of the same range (an operator's)."""
         return IntProperty(name=label or self.label, description=tooltip or self.tooltip, default=self.default,
                            min=self.hard[0], max=self.hard[1], soft_min=self.soft[0], soft_max=self.soft[1])
+
+
+class Bool(Field):
+    """A checkbox. Where the solver owns the setting (its name is in native.facts().defaults), the
+    default comes from the solver and must not be given here; otherwise it must be."""
+
+    def __init__(self, name, label, tooltip, default=None, **options):
+        super().__init__(name, label, tooltip, **options)
+        facts = native.facts()
+        owned = name in facts.defaults
+        if owned == (default is not None):
+            raise ValueError("%s: %s" % (name, "the solver owns its default (settings.h)" if owned
+                                         else "a setting the solver does not own needs a default"))
+        self.default = bool(facts.defaults[name] if owned else default)
+
+    def prop(self, _classes):
+        return BoolProperty(name=self.label, description=self.tooltip, default=self.default)
 
 
 class Choice(Field):

@@ -26,7 +26,7 @@ class MeshArrays:
         self.coords = np.empty((self.num_vertices, 3), np.float32)
         read_base_coords(mesh, self.coords)
         self.triangles, self.tri_polygon = read_loop_triangles(mesh)
-        self.corner_vertex, self.corner_polygon, self.polygon_sides = _read_corners(mesh)
+        self.corner_vertex, self.corner_polygon, self.polygon_sides = read_corners(mesh)
 
     def polygon_average(self, vertex_values):
         """Mean of a per-vertex float array over each polygon's corners."""
@@ -88,7 +88,7 @@ def read_loop_triangles(mesh):
     return triangles, tri_polygon
 
 
-def _read_corners(mesh):
+def read_corners(mesh):
     """Corner -> vertex and corner -> polygon, ordered polygon by polygon.
 
     Polygons normally store their corners contiguously in order, but that is
@@ -126,13 +126,14 @@ def read_selected_faces(obj):
     return normals[usable], areas[usable]
 
 
-def read_group_weights(obj):
-    """{vertex group name: (#V,) float32 weights}, for every group of ``obj``.
+def read_group_weights(obj, mesh=None):
+    """{vertex group name: (#V,) float32 weights}, for every group of ``obj``, read from
+    ``mesh`` (default: obj.data; an evaluated copy of it keeps the object's group numbering).
 
     This is the only per-vertex Python loop of the add-on; it runs once when
     stylization starts (Blender offers no bulk access to deform weights).
     """
-    mesh = obj.data
+    mesh = obj.data if mesh is None else mesh
     names = [group.name for group in obj.vertex_groups]
     weights = np.zeros((len(names), len(mesh.vertices)), np.float32)
     if names:

@@ -236,6 +236,11 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         if context.workspace is not None:
             context.workspace.status_text_set(text)
 
+    def panel_state(self):
+        """(title, [(text, icon)], key hints) for the sidebar's box while the run goes on (ui.py)."""
+        live = self.live
+        return live.panel_title(), live.panel_lines(), (SETUP_HINT,) if live.preparing else KEY_HINTS
+
     @property
     def tick_ms(self):
         return list(self.live.tick_ms)

@@ -1,4 +1,9 @@
-"""Where the stylized coordinates go: the mesh itself or a shape key.
+"""Where the stylized coordinates go: the mesh itself, a shape key, or a new object.
+
+A target is set up before anything changes, then: ``prepare()`` (the first
+change), ``write(coords)`` per step, and ``keep()`` or ``restore()`` at the
+end. ``alive()`` says whether what it writes into still exists; ``rest`` is
+(mesh, coordinates, kind) for Reset (rest_store.capture) once it is kept.
 
 Each target snapshots exactly what it will overwrite before the first write,
 so cancelling restores the mesh bit for bit (the snapshot is a float32 copy of
@@ -12,12 +17,30 @@ pointer, and writing through it crashed Blender.
 """
 
 import bpy
+import numpy as np
 
-from . import mesh_io
+from . import cache_modifier, mesh_io, schema
 from .errors import SettingsError
 
 SHAPE_KEY_NAME = "Gauss Stylized"
 BASIS_NAME = "Basis"
+
+
+def _mesh_has(mesh, num_vertices):
+    """Is ``mesh`` still there with ``num_vertices`` vertices (not freed, not edited)?"""
+    try:
+        return len(mesh.vertices) == num_vertices
+    except ReferenceError:  # freed (deleted, undo, file load)
+        return False
+
+
+def _write_shown_coords(mesh, coords):
+    """Write ``coords`` where they show: the vertices, and with shape keys the reference key too."""
+    mesh_io.write_vertex_coords(mesh, coords)
+    key = mesh_io.base_key(mesh)  # looked up anew: keys may be deleted mid-run
+    if key is not None:
+        mesh_io.write_key_coords(key, coords)
+    mesh_io.tag_changed(mesh)
 
 
 class MeshTarget:
@@ -28,21 +51,28 @@ class MeshTarget:
 
     def __init__(self, obj, num_vertices):
         self.mesh = obj.data
+        self.num_vertices = num_vertices
         key = mesh_io.base_key(self.mesh)
         self.saved_vertices = mesh_io.read_vertex_coords(self.mesh)
         self.saved_key = None if key is None else mesh_io.read_key_coords(key, num_vertices)
+        base = self.saved_vertices if self.saved_key is None else self.saved_key
+        self.rest = (self.mesh, base, self.kind)
 
     def prepare(self):
         pass
 
     def write(self, coords):
-        mesh_io.write_vertex_coords(self.mesh, coords)
-        key = mesh_io.base_key(self.mesh)  # looked up anew: keys may be deleted mid-run
-        if key is not None:
-            mesh_io.write_key_coords(key, coords)
-        mesh_io.tag_changed(self.mesh)
+        _write_shown_coords(self.mesh, coords)
+
+    def alive(self):
+        return _mesh_has(self.mesh, self.num_vertices)
+
+    def keep(self):
+        pass
 
     def restore(self):
+        if not self.alive():  # a freed or edited mesh is left alone
+            return
         mesh_io.write_vertex_coords(self.mesh, self.saved_vertices)
         key = mesh_io.base_key(self.mesh)
         if key is not None:
@@ -60,6 +90,10 @@ class ShapeKeyTarget:
     def __init__(self, obj, num_vertices):
         self.obj = obj
         self.mesh = obj.data
+        self.num_vertices = num_vertices
+        base = np.empty((num_vertices, 3), np.float32)
+        mesh_io.read_base_coords(self.mesh, base)
+        self.rest = (self.mesh, base, self.kind)
         keys = self.mesh.shape_keys
         if keys is not None and not keys.use_relative:
             raise SettingsError("'%s' uses absolute shape keys; turn on Relative in its "
@@ -96,8 +130,16 @@ class ShapeKeyTarget:
         mesh_io.write_key_coords(key, coords)
         mesh_io.tag_changed(self.mesh)
 
+    def alive(self):
+        return _mesh_has(self.mesh, self.num_vertices)
+
+    def keep(self):
+        pass
+
     def restore(self):
         """Put back what is still there (the artist may have deleted keys or the object meanwhile)."""
+        if not self.alive():  # a freed or edited mesh is left alone
+            return
         key = self._key()
         if self.had_key:
             if key is not None:
@@ -133,9 +175,101 @@ class ShapeKeyTarget:
                 bpy.data.objects.remove(borrowed)
 
 
-def make_target(obj, num_vertices):
+class NewObjectTarget:
+    """Write into a new object '<name>_stylized': a copy of the original (same collections,
+    transform, material slots, settings) whose mesh is the stylized one. With Use Modifiers its
+    mesh is the evaluated copy the source read (every layer kept) and it has no modifiers (they
+    are in the mesh); otherwise its mesh is a copy of the base mesh and it keeps the modifiers.
+
+    The original's data is never written. While a live run goes on the original is drawn as a
+    wireframe, so the result can be seen through it (hiding it would leave the panel without an
+    active object); keep() draws it as before and selects the new object, restore() removes the
+    new object and its mesh."""
+
+    kind = 'NEW_OBJECT'
+
+    def __init__(self, obj, source):
+        self.original = obj
+        self.source = source
+        self.obj = self.mesh = None
+        self.num_vertices = source.arrays.num_vertices
+        self.display_type = obj.display_type
+        self.rest = None  # set by prepare(): (new mesh, its start coordinates, 'MESH')
+
+    def prepare(self):
+        original = self.original
+        name = original.name + schema.NEW_OBJECT_SUFFIX
+        mesh = self.source.adopt_mesh() or original.data.copy()
+        mesh.name = name
+        new = original.copy()  # settings, material slots (also object-linked ones), transform, parent
+        new.data = mesh
+        new.name = name
+        if self.source.evaluated:
+            new.modifiers.clear()  # already applied in the mesh
+        else:
+            cache_modifier.remove(new)  # would replay a bake over the stylized mesh
+        for collection in original.users_collection:
+            collection.objects.link(new)
+        _select(new, False)  # linking copies the original's selection; it is selected when kept
+        self.obj, self.mesh = new, mesh
+        self.rest = (mesh, self.source.arrays.coords, MeshTarget.kind)
+        new.display_type = self.display_type
+        original.display_type = 'WIRE'
+
+    def write(self, coords):
+        _write_shown_coords(self.mesh, coords)
+
+    def alive(self):
+        try:
+            return self.obj is not None and self.obj.data == self.mesh and _mesh_has(self.mesh, self.num_vertices)
+        except ReferenceError:  # the new object was deleted during the run
+            return False
+
+    def keep(self):
+        self._show_original()
+        _select(self.original, False)
+        if _select(self.obj, True):
+            bpy.context.view_layer.objects.active = self.obj
+
+    def restore(self):
+        """Remove what the run created (as far as it still exists) and show the original again."""
+        for block, datablocks in ((self.obj, bpy.data.objects), (self.mesh, bpy.data.meshes)):
+            try:
+                if block is not None:
+                    datablocks.remove(block)
+            except ReferenceError:  # already deleted by the artist
+                pass
+        self.obj = self.mesh = None
+        self._show_original()
+
+    def _show_original(self):
+        try:
+            self.original.display_type = self.display_type
+        except ReferenceError:  # deleted during the run
+            pass
+
+
+def _select(obj, state):
+    """Select or deselect ``obj`` in the current view layer; False if it is not in it."""
+    try:
+        obj.select_set(state)
+    except (RuntimeError, ReferenceError):  # not in this view layer (an excluded collection), or deleted
+        return False
+    return True
+
+
+def make_target(obj, source):
+    """The target of ``obj``'s Output setting for a run on ``source`` (source.Source)."""
     kind = obj.gauss_stylization.output
-    return (ShapeKeyTarget if kind == 'SHAPE_KEY' else MeshTarget)(obj, num_vertices)
+    if kind == 'NEW_OBJECT':
+        return NewObjectTarget(obj, source)
+    if not source.same_topology:
+        label = "shape key" if kind == 'SHAPE_KEY' else "mesh"
+        raise SettingsError("The modifiers of '%s' change its vertices or faces (%d vertices shown, %d in the "
+                            "mesh), so the result cannot go into its %s. Choose Output: New Object, or bake "
+                            "an animation to a point cache" % (obj.name, source.arrays.num_vertices,
+                                                                len(obj.data.vertices), label))
+    return (ShapeKeyTarget if kind == 'SHAPE_KEY' else MeshTarget)(obj, source.arrays.num_vertices)
 
 
 def target_key(obj):

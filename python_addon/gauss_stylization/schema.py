@@ -4,8 +4,8 @@ The PropertyGroups (properties.py), the JSON round-trip and the settings writer
 (settings_io.py), the validation before a run (validation.py), what a live run
 does when a setting changes (session.py) and the panel rows (ui.py) are all
 derived from these tables. Defaults and hard ranges of what the solver owns
-(lam, sigma, mu, axis_contribution, admm_iterations, cubic_lambda, tolerance), the
-preset registry and the methods come from the solver (native.facts()), never from here.
+(lam, sigma, mu, axis_contribution, admm_iterations, cubic_lambda, tolerance; the default of
+keep_volume), the preset registry and the methods come from the solver (native.facts()), never from here.
 
 A new setting is one line in its table (kinds: fields.py), plus its use in the
 solver call for slot fields (styles.make_style); see python_addon/README.md.
@@ -13,7 +13,7 @@ solver call for slot fields (styles.make_style); see python_addon/README.md.
 
 from . import native
 from .fields import (
-    Choice, Direction, Euler, Float, Index, Int, Live, Normals, Panel, Slots, Text, VertexGroup,
+    Bool, Choice, Direction, Euler, Float, Index, Int, Live, Normals, Panel, Slots, Text, VertexGroup,
 )
 
 FACTS = native.facts()
@@ -23,6 +23,7 @@ PIN_THRESHOLD = 0.5     # a vertex is pinned when its pin-group weight is above 
 # A scripted run of 0 steps runs until converged; it stops after this many steps if it has not by then
 # (a mesh that keeps changing, a Tolerance below what the shape reaches), so a script always ends.
 UNTIL_CONVERGED_CAP = 5000
+NEW_OBJECT_SUFFIX = "_stylized"  # New Object output: '<name>_stylized'
 CUSTOM_NUMBER = 99  # enum number of Custom in saved files; presets are numbered 0, 1, ... in PRESETS order
 
 
@@ -130,10 +131,18 @@ OBJECT = (
     Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode; "
         "0: until converged (Tolerance), at most %d steps" % UNTIL_CONVERGED_CAP,
         default=100, hard=(0, 100000), panel=Panel.SOLVER),
+    Bool("keep_volume", "Keep Volume", "After each step scale every closed part of the mesh about its centre "
+         "back to its original volume (open parts: to their original area; parts with pinned vertices are "
+         "left alone), so the shape does not shrink", live=Live.SETTER, panel=Panel.SOLVER),
+    Bool("use_modifiers", "Use Modifiers", "Stylize the mesh as it is shown: modifiers, armature and shape "
+         "keys at the current frame (otherwise the base mesh, under the modifiers)", default=False,
+         panel=Panel.MAIN),
     Choice("output", "Output", "Where the stylized coordinates go",
            (('MESH', "Mesh", "Move the vertices of the mesh itself", 0),
             ('SHAPE_KEY', "Shape Key",
-             "Write the result into the shape key 'Gauss Stylized' to blend it with its slider", 1)),
+             "Write the result into the shape key 'Gauss Stylized' to blend it with its slider", 1),
+            ('NEW_OBJECT', "New Object", "Put the result into a new object '<name>%s' (same collection, "
+             "transform and materials); the original stays as it is" % NEW_OBJECT_SUFFIX, 2)),
            'MESH', panel=Panel.MAIN),
     VertexGroup("pin_group", "Pin Group", "Vertices in this group (weight above %g) keep their position"
                 % PIN_THRESHOLD, live=Live.PINS, panel=Panel.MAIN),
@@ -141,6 +150,9 @@ OBJECT = (
            (('FIRST_SLOT', "First Style", "Faces outside every style's group use the first style", 0),
             ('UNSTYLED', "Unstyled", "Faces outside every style's group only keep their shape", 1)),
            'FIRST_SLOT', live=Live.REGIONS, panel=Panel.STYLES, text="Other Faces"),
+    Int("bake_steps", "Bake Steps", "Solver steps per frame of an animation bake (with Warm Start the "
+        "first frame runs Script Steps, the others continue from the previous frame)",
+        default=10, hard=(1, 100000), soft=(1, 200), panel=Panel.BAKE),
     Slots("styles", "Styles", "GaussStyleSlot", SLOT, owner_name=lambda slot: "Style '%s'" % slot.name),
     Index("active_style_index", "Active Style"),
 )

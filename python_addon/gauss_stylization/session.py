@@ -1,7 +1,8 @@
 """One stylization run of one object: what it reads, its solver, buffers and output target.
 
 A run is set up in two parts. ``Plan(obj)`` reads and checks everything it
-needs from Blender on the main thread; a bad setting or mesh raises
+needs from Blender on the main thread (what it stylizes comes from source.py:
+the base mesh, or with Use Modifiers the evaluated one); a bad setting or mesh raises
 SettingsError there, before anything expensive happens. ``Plan.build_solver()``
 then sets up the solver from those arrays alone (no Blender data), so
 solver_setup.py may run it on another thread while Blender stays responsive.
@@ -17,7 +18,7 @@ import time
 
 import numpy as np
 
-from . import mesh_io, native, output, rest_store, schema, styles
+from . import mesh_io, native, output, rest_store, schema, source as sources, styles
 from .errors import SettingsError
 from .fields import Live, changes
 from .settings_io import add_slot, to_dict
@@ -46,23 +47,41 @@ def _solver_error(exc):
 class Plan:
     """Everything a run of ``obj`` needs from Blender, read and checked (main thread).
 
-    arrays:  mesh_io.MeshArrays (coordinates, loop triangles, corners)
+    source:  what is stylized (source.Source; default: read from ``obj`` by its Use Modifiers)
+    arrays:  its mesh_io.MeshArrays (coordinates, loop triangles, corners)
     weights: {vertex group name: (#V,) float32}, read once
     applied: the settings (settings_io.to_dict) the solver is built with
     pins, styles, face_styles: the solver's inputs derived from them
-    target:  output target, snapshot taken, nothing written yet
+    target:  output target (default: ``obj``'s Output, output.make_target), snapshot taken,
+             nothing written yet
+
+    A plan holds the source's evaluated mesh copy until the Session made from it has prepared
+    its target (New Object output adopts it); a plan that gets no Session is ``release()``d.
     """
 
-    def __init__(self, obj):
+    def __init__(self, obj, source=None, target=None):
         self.obj = obj
         self.name = obj.name  # for messages, also once the object is gone
         self.mesh = obj.data
         self.gauss_core = native.core()
         check_object(obj)
-        self.arrays = mesh_io.MeshArrays(self.mesh)
-        check_coordinates(obj, self.arrays.coords)
-        self.weights = mesh_io.read_group_weights(obj)
         settings = obj.gauss_stylization
+        self.source = source if source is not None else sources.read(obj, settings.use_modifiers)
+        try:
+            self._read(obj, settings, target)
+        except BaseException:
+            self.release()
+            raise
+
+    def _read(self, obj, settings, target):
+        self.arrays = self.source.arrays
+        check_coordinates(obj, self.arrays.coords)
+        # The base mesh as it is now, to notice an edit while the solver is set up (changed()).
+        self.base_coords = self.arrays.coords
+        if self.source.evaluated:
+            self.base_coords = np.empty((len(self.mesh.vertices), 3), np.float32)
+            mesh_io.read_base_coords(self.mesh, self.base_coords)
+        self.weights = self.source.weights
         check_settings(obj, settings, self.weights)
         # The settings the solver runs with; a tick compares them with the panel's to find
         # what changed, and each change does what its field's Live says (schema.py).
@@ -75,7 +94,11 @@ class Plan:
             raise _solver_error(exc) from exc
         self.face_styles = self.face_styles_for(settings)
         self.solver_options = {field.name: field.read(settings) for field in schema.SOLVER_SETTERS}
-        self.target = output.make_target(obj, self.arrays.num_vertices)
+        self.target = target or output.make_target(obj, self.source)
+
+    def release(self):
+        """Remove the source's evaluated mesh copy unless a target adopted it (safe to repeat)."""
+        self.source.release()
 
     def face_styles_for(self, settings):
         groups = [slot.vertex_group for slot in settings.styles]
@@ -89,13 +112,13 @@ class Plan:
         """Why the object is no longer what this plan read (None if it still is). The interface stays
         usable while a solver is set up on another thread, so it may have been edited or deleted."""
         try:
-            if self.obj.data != self.mesh or len(self.mesh.vertices) != self.num_vertices:
+            if self.obj.data != self.mesh or len(self.mesh.vertices) != len(self.base_coords):
                 return "its mesh was replaced or edited while Stylize was preparing; press Stylize again"
         except ReferenceError:
             return "it was deleted while Stylize was preparing"
-        now = np.empty_like(self.arrays.coords)
+        now = np.empty_like(self.base_coords)
         mesh_io.read_base_coords(self.mesh, now)
-        if not np.array_equal(now, self.arrays.coords):
+        if not np.array_equal(now, self.base_coords):
             return "its mesh was edited while Stylize was preparing; press Stylize again"
         return None
 
@@ -124,6 +147,12 @@ class Session:
         thread (solver_setup.PinsSetup) while the session waits, instead of inside sync_settings()."""
         if not isinstance(plan, Plan):
             plan = Plan(plan)
+        try:
+            self._start(plan, solver, background_pins)
+        finally:
+            plan.release()  # the evaluated copy, unless the target took it over
+
+    def _start(self, plan, solver, background_pins):
         if solver is None:
             solver = plan.build_solver()
         self.plan = plan
@@ -231,6 +260,11 @@ class Session:
             self.pins_setup.cancel()
             self.pins_setup = None
 
+    def start_from(self, coords):
+        """Continue from ``coords`` ((#V,3)) instead of the current shape: the rest shape and the
+        factorization stay (a warm start, see bake.py)."""
+        self.solver.set_vertices(coords)
+
     @property
     def converged(self):
         """Did the last step move the mesh by less than the Tolerance, with nothing changed since?
@@ -277,28 +311,22 @@ class Session:
     def keep(self):
         """Keep the result; remember the start coordinates for the Reset operator."""
         self._stop_pins()  # a Pin Group change still being prepared never reached the result
-        rest_store.capture(self.mesh, self.arrays.coords, self.target.kind)
+        self.target.keep()
+        rest_store.capture(*self.target.rest)
 
     def cancel(self):
         """Put back exactly what was there before the run, as far as it still exists.
 
         The mesh is restored even when its object was deleted during the run:
         another object may share it, and undo reuses the mesh as it is in memory.
-        A freed mesh, or one whose vertex count changed, is left alone.
+        A freed mesh, or one whose vertex count changed, is left alone (output.py).
         """
         self._stop_pins()
-        if self.mesh_alive():
-            self.target.restore()
-
-    def mesh_alive(self):
-        try:
-            return len(self.mesh.vertices) == self.arrays.num_vertices
-        except ReferenceError:  # the mesh was freed (deleted, undo, file load)
-            return False
+        self.target.restore()
 
     def object_alive(self):
         try:
-            return self.obj.data == self.mesh and self.mesh_alive()
+            return self.obj.data == self.mesh and self.target.alive()
         except ReferenceError:  # the object or mesh was deleted while running
             return False
 

@@ -55,7 +55,9 @@ class Planned:
 
     def give_up(self, plan):
         """``plan``'s object will not be stylized: take back the default slot it was given
-        (a start that fails changes nothing, settings included)."""
+        (a start that fails changes nothing, settings included), and drop the evaluated mesh copy
+        it read for Use Modifiers."""
+        plan.release()
         obj = plan.obj
         if obj in self.slot_added:
             self.slot_added.remove(obj)
@@ -65,7 +67,8 @@ class Planned:
                 pass
 
     def undo_added_slots(self):
-        """Take back every default slot (a run cancelled while it was preparing changes nothing)."""
+        """Give up every plan: default slots taken back, evaluated copies dropped (a run cancelled
+        while it was preparing changes nothing)."""
         for plan in self.plans:
             self.give_up(plan)
 

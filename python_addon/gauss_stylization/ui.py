@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import native, operators, runs, schema
+from . import native, runs, schema
 from .errors import NativeModuleError
 from .fields import Panel
 from .targets import stylize_objects
@@ -39,6 +39,15 @@ class _GaussPanel:
     bl_category = CATEGORY
 
 
+class _GaussSubPanel(_GaussPanel):
+    """A sub-panel of the Gauss Stylization panel, shown when a mesh object is active."""
+    bl_parent_id = "VIEW3D_PT_gauss_stylization"
+
+    @classmethod
+    def poll(cls, context):
+        return _mesh_object(context) is not None
+
+
 class VIEW3D_PT_gauss_stylization(_GaussPanel, bpy.types.Panel):
     bl_label = "Gauss Stylization"
 
@@ -64,13 +73,8 @@ class VIEW3D_PT_gauss_stylization(_GaussPanel, bpy.types.Panel):
         _draw_rows(_split_column(layout), obj, obj.gauss_stylization, schema.OBJECT, Panel.MAIN)
 
 
-class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
+class VIEW3D_PT_gauss_styles(_GaussSubPanel, bpy.types.Panel):
     bl_label = "Styles"
-    bl_parent_id = "VIEW3D_PT_gauss_stylization"
-
-    @classmethod
-    def poll(cls, context):
-        return _mesh_object(context) is not None
 
     def draw(self, context):
         obj = _mesh_object(context)
@@ -101,12 +105,14 @@ class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
 
 
 def _draw_run_state(layout, run):
-    """What a live run does: its objects and steps (or its set-up), and the keys that end it."""
+    """What a live run (a Stylize, or a bake: bake_operators.py) does: its objects and how far
+    they are, and the keys that end it."""
+    title, lines, hints = run.panel_state()
     box = layout.box().column(align=True)
-    box.label(text=run.live.panel_title(), icon='TIME')
-    for text, icon in run.live.panel_lines():
+    box.label(text=title, icon='TIME')
+    for text, icon in lines:
         box.label(text=text, icon=icon)
-    for hint in (operators.SETUP_HINT,) if run.preparing else operators.KEY_HINTS:
+    for hint in hints:
         box.label(text=hint)
 
 
@@ -144,14 +150,9 @@ def _draw_custom_normals(layout, _obj, slot, field):
         layout.label(text="Add at least one normal", icon='ERROR')
 
 
-class VIEW3D_PT_gauss_solver(_GaussPanel, bpy.types.Panel):
+class VIEW3D_PT_gauss_solver(_GaussSubPanel, bpy.types.Panel):
     bl_label = "Solver"
-    bl_parent_id = "VIEW3D_PT_gauss_stylization"
     bl_options = {'DEFAULT_CLOSED'}
-
-    @classmethod
-    def poll(cls, context):
-        return _mesh_object(context) is not None
 
     def draw(self, context):
         obj = _mesh_object(context)

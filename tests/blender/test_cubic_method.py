@@ -85,5 +85,5 @@ def test_the_panel_shows_cubic_lambda_only_for_cubic(addon):
     assert rows == ["method", "cubic_lambda"]
     rows.clear()
     addon.ui._draw_rows(layout, obj, obj.gauss_stylization, addon.schema.OBJECT, addon.fields.Panel.SOLVER)
-    assert rows == ["tolerance", "iterations"]  # Lambda and ADMM Iterations are the Gauss method's
+    assert rows == ["tolerance", "iterations", "keep_volume"]  # Lambda and ADMM Iterations are the Gauss method's
 

@@ -101,6 +101,7 @@ LIVE_CHANGES = {
     ("object", "method"): ({}, {}, 'CUBIC'),
     ("object", "cubic_lambda"): ({}, dict(method='CUBIC'), 0.8),
     ("object", "admm_iterations"): ({}, {}, 3),
+    ("object", "keep_volume"): ({}, {}, True),
 }
 # Live settings that change what the solver says about the shape, not the shape: the value changed to.
 LIVE_READOUTS = {

@@ -1,0 +1,190 @@
+"""Bakes to a point cache (.pc2 played by a Mesh Cache modifier, see cache_modifier.py).
+
+AnimationBake stylizes the evaluated (animated, deformed) mesh of every frame of
+a range; ProgressBake records one stylization step by step, the "morph into
+style". A bake is advanced a frame at a time (``advance()``), so the operators
+can run it synchronously (scripts, background mode) or a frame per timer tick;
+then ``finish()`` renames the finished file into place and attaches the
+modifier, or ``cancel()`` drops the temporary file and attaches nothing. Either
+way the scene frame and the object's cache modifier are as before (the
+modifier is off while the bake reads the object, so no bake reads an earlier one).
+
+Warm start (AnimationBake): frame f0 = frame_start is stylized from its rest shape
+R_f0 with Script Steps (settings.iterations) steps (0: until converged), exactly as
+Stylize would on that frame; every later frame f starts from
+
+    X_f = Y_{f-1} + (R_f - R_{f-1})       (per vertex, object space)
+
+(Y: the previous frame's result, R: the evaluated mesh of a frame, the solver's rest
+shape) and runs Bake Steps (settings.bake_steps) steps, so the style carries over
+from frame to frame instead of being rebuilt (no flicker). Without warm start
+every frame runs Bake Steps steps from its own rest shape: a frame's result does
+not depend on the other frames, so ranges can be baked apart and give the same frames.
+"""
+
+import os
+
+import bpy
+
+from . import cache_modifier, pc2, schema, source as sources
+from .errors import SettingsError
+from .session import Plan, Session
+from .settings_io import to_dict
+
+DEFAULT_PATH = "//%s_gauss.pc2"  # % the object's name made file-safe
+
+
+def resolve_path(filepath, obj):
+    """(path as the modifier keeps it, absolute path) for the operator's ``filepath``
+    ('' = DEFAULT_PATH). Relative paths ('//') need a saved .blend file."""
+    filepath = filepath or DEFAULT_PATH % bpy.path.clean_name(obj.name)
+    if filepath.startswith("//") and not bpy.data.filepath:
+        raise SettingsError("Save the .blend file first: the cache path '%s' is relative to it "
+                            "(or give an absolute path)" % filepath)
+    absolute = os.path.abspath(bpy.path.abspath(filepath))
+    if os.path.isdir(absolute):
+        raise SettingsError("The cache path '%s' is a folder; give a file name" % filepath)
+    return filepath, absolute
+
+
+class CacheTarget:
+    """A Session target that appends every result to a point cache."""
+
+    kind = 'POINT_CACHE'
+    rest = None
+
+    def __init__(self, writer):
+        self.writer = writer
+
+    def prepare(self):
+        pass
+
+    def write(self, coords):
+        self.writer.add(coords)
+
+    def alive(self):
+        return True
+
+    def keep(self):
+        pass
+
+    def restore(self):
+        pass
+
+
+class _Bake:
+    """What both bakes share: the file, the suspended modifier, the scene frame, the settings."""
+
+    def __init__(self, context, obj, filepath, total):
+        self.obj, self.scene = obj, context.scene
+        self.settings = obj.gauss_stylization
+        self.modifier_path, self.path = resolve_path(filepath, obj)
+        self.total, self.done = total, 0
+        self.writer = None
+        self.frame = (self.scene.frame_current, self.scene.frame_subframe)
+        self.applied = to_dict(self.settings)
+        self.suspended = cache_modifier.Suspended(obj).__enter__()
+
+    def _open(self, points, start):
+        self.writer = pc2.Writer(self.path, points, self.total, start=float(start))
+
+    def _check_unchanged(self):
+        if to_dict(self.settings) != self.applied:
+            raise SettingsError("The settings of '%s' changed during the bake; start it again to bake "
+                                "with the new ones" % self.obj.name)
+
+    @property
+    def finished(self):
+        return self.done >= self.total
+
+    def finish(self, frame_start, last):
+        self.writer.commit()
+        self._restore()
+        cache_modifier.attach(self.obj, self.modifier_path, frame_start, last)
+
+    def cancel(self):
+        if self.writer is not None:
+            self.writer.discard()
+        self._restore()
+
+    def _restore(self):
+        self.suspended.restore()
+        frame, subframe = self.frame
+        try:
+            self.scene.frame_set(frame, subframe=subframe)
+        except ReferenceError:  # cancelled because another file is being loaded
+            pass
+
+
+class AnimationBake(_Bake):
+    def __init__(self, context, obj, frame_start, frame_end, filepath, warm_start):
+        if frame_end < frame_start:
+            raise SettingsError("The last frame (%d) is before the first (%d)" % (frame_end, frame_start))
+        super().__init__(context, obj, filepath, frame_end - frame_start + 1)
+        self.frame_start, self.warm_start = frame_start, warm_start
+        self.previous = None  # (rest, result) of the last baked frame
+        try:
+            self.scene.frame_set(frame_start)
+            self.first = sources.read(obj, True)
+            self.first.release()  # only its arrays and weights are needed: later frames share them
+            self._open(self.first.arrays.num_vertices, frame_start)
+        except BaseException:
+            self.cancel()
+            raise
+
+    def advance(self):
+        """Bake the next frame."""
+        self._check_unchanged()
+        frame = self.frame_start + self.done
+        source = self.first
+        if self.done:
+            self.scene.frame_set(frame)
+            depsgraph = bpy.context.evaluated_depsgraph_get()
+            source = self.first.moved(sources.evaluated_coords(self.obj, depsgraph, self.first.arrays,
+                                                               "at frame %d" % frame))
+        session = Session(Plan(self.obj, source, CacheTarget(self.writer)))
+        steps = self.settings.bake_steps
+        if self.warm_start:
+            if self.previous is None:
+                steps = self.settings.iterations
+            else:
+                rest, result = self.previous
+                session.start_from(result + (source.arrays.coords - rest))
+        if steps == 0:  # Script Steps 0: until converged, as Stylize runs it
+            session.step_until(schema.UNTIL_CONVERGED_CAP)
+        else:
+            session.step(steps)
+        if self.warm_start:
+            self.previous = (source.arrays.coords, session.result.copy())
+        self.done += 1
+
+    def finish(self):
+        super().finish(self.frame_start, last=True)
+
+
+class ProgressBake(_Bake):
+    def __init__(self, context, obj, steps, steps_per_frame, frame_start, filepath):
+        if steps_per_frame < 1 or steps % steps_per_frame:
+            raise SettingsError("Steps (%d) must be a multiple of Steps per Frame (%d)" % (steps, steps_per_frame))
+        super().__init__(context, obj, filepath, steps // steps_per_frame + 1)
+        self.frame_start, self.steps_per_frame = frame_start, steps_per_frame
+        try:
+            source = sources.read(obj, self.settings.use_modifiers)
+            rest = source.arrays.coords
+            self._open(source.arrays.num_vertices, frame_start)
+            self.session = Session(Plan(obj, source, CacheTarget(self.writer)))
+            self.writer.add(rest)  # frame 0: before the first step
+            self.done = 1
+        except BaseException:
+            self.cancel()
+            raise
+
+    def advance(self):
+        """Run the next frame's steps."""
+        self._check_unchanged()
+        self.session.step(self.steps_per_frame)
+        self.done += 1
+
+    def finish(self):
+        # The cache holds what was stylized: the stack's output (last) or the base mesh (first).
+        super().finish(self.frame_start, last=self.settings.use_modifiers)

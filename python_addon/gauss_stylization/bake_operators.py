@@ -1,0 +1,225 @@
+"""Operators that bake to a point cache: Bake Animation and Bake Progress (bake.py).
+
+From a script or in background mode they run synchronously and print a progress
+line at least every 10%; from the UI they run in the background of Blender's
+event loop (a timer, frames for up to TICK_BUDGET seconds per tick) with the
+progress indicator, and Esc cancels, leaving no file and no modifier behind.
+Progress goes through the add-on's shared ProgressReport (progress.py). A bake
+registers as a run (runs.py), so Stylize and Reset wait for it and undo cancels
+it first.
+"""
+
+import time
+
+import bpy
+from bpy.props import BoolProperty, IntProperty, StringProperty
+
+from . import bake, runs, schema
+from .errors import NativeModuleError, SettingsError
+from .progress import ProgressReport
+from .session import ensure_style_slot
+from .targets import stylize_problem
+from .validation import object_problem, poll_result
+
+TICK_SECONDS = 0.01
+TICK_BUDGET = 0.1  # seconds of baking per tick (at least one frame), so the UI stays responsive
+FRAME_LIMIT = 1048574  # Blender's MAXFRAME: frames range over +-this
+_STEPS = schema.field(schema.OBJECT, "iterations")
+
+_FILEPATH_TOOLTIP = ("The .pc2 file to write (relative paths start with // and need a saved .blend); "
+                     "empty: %s" % (bake.DEFAULT_PATH % "<object>"))
+
+
+def _frame_prop(name, tooltip, default=1):
+    return IntProperty(name=name, description=tooltip, default=default, min=-FRAME_LIMIT, max=FRAME_LIMIT)
+
+
+_START_ERRORS = (SettingsError, NativeModuleError, OSError, ValueError)
+
+
+class _BakeOperator:
+    """Runs ``self.make_bake(context)`` (a bake.AnimationBake / ProgressBake) to its end.
+    A bake acts on the active object alone."""
+
+    # One undo step takes the modifier away again (the file stays); the redo panel re-bakes.
+    bl_options = {'REGISTER', 'UNDO'}
+    sessions = ()  # runs.py asks every run for its live Stylize sessions: a bake has none
+
+    @classmethod
+    def poll(cls, context):
+        return poll_result(cls, object_problem(context) or stylize_problem(context))
+
+    def _start(self, context):
+        """The bake set up, with a default style slot added first if the object has none (taken
+        back if the set-up fails: a failed start changes nothing); None if it failed (reported)."""
+        obj = context.active_object
+        self._job, self._obj_name = None, obj.name
+        added = ensure_style_slot(obj.gauss_stylization)
+        try:
+            self._job = self.make_bake(context)
+        except _START_ERRORS as exc:
+            if added:
+                obj.gauss_stylization.styles.remove(0)
+            self.report({'ERROR'}, str(exc))
+            return None
+        if added:
+            self.report({'INFO'}, "No style slot yet: added a %s style" % obj.gauss_stylization.styles[0].name)
+        return self._job
+
+    def panel_state(self):
+        """(title, [(text, icon)], key hints) for the sidebar's box while the bake runs (ui.py)."""
+        return ("Baking to a point cache", [("%s: %s" % (self._obj_name, self._progress_text()), 'FILE_CACHE')],
+                ("Esc: cancel (nothing is written)",))
+
+    def _progress_text(self):
+        return "frame %d of %d" % (self._job.done, self._job.total)
+
+    def _update(self, report):
+        report.update(self._job.done / self._job.total, self._progress_text())
+
+    def _advance(self):
+        """One frame; on failure cancel and report. False once the bake ended either way."""
+        try:
+            self._job.advance()
+        except (SettingsError, OSError, ValueError, RuntimeError, ReferenceError) as exc:
+            self._job.cancel()
+            self.report({'ERROR'}, "Bake of '%s' cancelled: %s" % (self._obj_name, exc))
+            return False
+        return True
+
+    def _finish(self):
+        try:
+            self._job.finish()
+        except (OSError, ValueError, RuntimeError, ReferenceError) as exc:
+            self._job.cancel()
+            self.report({'ERROR'}, "Bake of '%s' could not be saved: %s" % (self._obj_name, exc))
+            return {'CANCELLED'}
+        self.report({'INFO'}, "Baked %d frames of '%s' to %s" % (self._job.total, self._obj_name, self._job.path))
+        return {'FINISHED'}
+
+    def _title(self):
+        """What the progress indicator, status bar and printed lines call this bake."""
+        return "Gauss %s '%s'" % (self.bl_label, self._obj_name)
+
+    # -- scripts and background mode: synchronous --------------------------------------
+
+    def execute(self, context):
+        if self._start(context) is None:
+            return {'CANCELLED'}
+        with ProgressReport(context, self._title()) as report:
+            self._update(report)
+            while not self._job.finished:
+                if not self._advance():
+                    return {'CANCELLED'}
+                self._update(report)
+        return self._finish()
+
+    # -- from the UI: modal on a timer ------------------------------------------------
+
+    def invoke(self, context, event):
+        if context.window is None or bpy.app.background:
+            return self.execute(context)
+        self.fill_defaults(context)
+        if self._start(context) is None:
+            return {'CANCELLED'}
+        self._progress = ProgressReport(context, self._title())
+        self._update(self._progress)
+        self._timer = context.window_manager.event_timer_add(TICK_SECONDS, window=context.window)
+        context.window_manager.modal_handler_add(self)
+        runs.start([self._job.obj], self)
+        return {'RUNNING_MODAL'}
+
+    def modal(self, context, event):
+        if self._timer is None:  # ended outside an event (undo, add-on disabled)
+            return {'CANCELLED', 'PASS_THROUGH'}
+        try:
+            return self._handle_event(context, event)
+        except Exception as exc:  # never leave a half-written file, a timer or a stale run behind
+            self.stop(context)
+            self.report({'ERROR'}, "Bake of '%s' cancelled: %s" % (self._obj_name, exc))
+            return {'CANCELLED'}
+
+    def _handle_event(self, context, event):
+        if event.type == 'ESC' and event.value == 'PRESS':
+            self.stop(context, keep=False)
+            self.report({'WARNING'}, "Bake of '%s' cancelled; nothing was written" % self._obj_name)
+            return {'CANCELLED'}
+        if event.type != 'TIMER':
+            return {'PASS_THROUGH'}
+        deadline = time.perf_counter() + TICK_BUDGET
+        while not self._job.finished:
+            if not self._advance():
+                self._end(context)
+                return {'CANCELLED'}
+            if time.perf_counter() > deadline:
+                break
+        self._update(self._progress)
+        if not self._job.finished:
+            return {'PASS_THROUGH'}
+        self._end(context)
+        return self._finish()
+
+    def stop(self, context, keep=False):
+        """Cancel (runs.stop_all calls this on undo and when the add-on is disabled)."""
+        if self._timer is None:
+            return
+        self._job.cancel()
+        self._end(context)
+
+    def cancel(self, context):
+        self.stop(context)
+
+    def _end(self, context):
+        context.window_manager.event_timer_remove(self._timer)
+        self._timer = None
+        self._progress.end()
+        runs.forget(self)
+
+    def fill_defaults(self, context):
+        """Values an artist would expect where the caller gave none (subclasses)."""
+
+
+class OBJECT_OT_gauss_bake_animation(_BakeOperator, bpy.types.Operator):
+    """Stylize every frame of the animation (the mesh as evaluated: modifiers, armature, shape keys) into a
+    point cache, played back by a Mesh Cache modifier added at the end of the stack"""
+    bl_idname = "object.gauss_bake_animation"
+    bl_label = "Bake Animation"
+
+    frame_start: _frame_prop("Start Frame", "First frame to bake (default: the scene's start)")
+    frame_end: _frame_prop("End Frame", "Last frame to bake (default: the scene's end)")
+    filepath: StringProperty(name="File Path", description=_FILEPATH_TOOLTIP, subtype='FILE_PATH')
+    warm_start: BoolProperty(
+        name="Warm Start", default=True,
+        description="Start each frame from the previous frame's result (steady style, no flicker). Off: every "
+                    "frame is stylized on its own, so frame ranges baked apart (render farm) give the same frames")
+
+    def fill_defaults(self, context):
+        if not self.properties.is_property_set("frame_start"):
+            self.frame_start = context.scene.frame_start
+        if not self.properties.is_property_set("frame_end"):
+            self.frame_end = context.scene.frame_end
+
+    def make_bake(self, context):
+        self.fill_defaults(context)
+        return bake.AnimationBake(context, context.active_object, self.frame_start, self.frame_end,
+                                  self.filepath, self.warm_start)
+
+
+class OBJECT_OT_gauss_bake_progress(_BakeOperator, bpy.types.Operator):
+    """Record the stylization itself as an animation (frame k: the mesh after k x Steps per Frame steps) into
+    a point cache, played back by a Mesh Cache modifier"""
+    bl_idname = "object.gauss_bake_progress"
+    bl_label = "Bake Progress"
+
+    steps: _STEPS.prop({}, label="Steps", tooltip="Solver steps in all (a multiple of Steps per Frame)")
+    steps_per_frame: IntProperty(name="Steps per Frame", description="Solver steps between two frames",
+                                 default=1, min=1, max=_STEPS.hard[1])
+    frame_start: _frame_prop("Start Frame", "Frame that shows the unstylized mesh (step 0)")
+    filepath: StringProperty(name="File Path", description=_FILEPATH_TOOLTIP, subtype='FILE_PATH')
+
+    def make_bake(self, context):
+        return bake.ProgressBake(context, context.active_object, self.steps, self.steps_per_frame,
+                                 self.frame_start, self.filepath)
+
+
+classes = (OBJECT_OT_gauss_bake_animation, OBJECT_OT_gauss_bake_progress)
