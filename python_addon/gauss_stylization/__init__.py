@@ -18,15 +18,18 @@ bl_info = {
 if "bpy" in locals():  # F8 / script reload: reload the submodules too
     import importlib
     for _module in (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
-                    rest_store, settings_io, session, runs, viewport, operators, slot_operators, ui):
+                    rest_store, settings_io, session, runs, viewport, directions, orientation, surface,
+                    style_from_data, operators, slot_operators, ui):
         importlib.reload(_module)
 else:
     from . import (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
-                   rest_store, settings_io, session, runs, viewport, operators, slot_operators, ui)
+                   rest_store, settings_io, session, runs, viewport, directions, orientation, surface,
+                   style_from_data, operators, slot_operators, ui)
 
 import bpy
 
-classes = properties.classes + operators.classes + slot_operators.classes + ui.classes
+classes = (properties.classes + operators.classes + slot_operators.classes + style_from_data.classes
+           + ui.classes)
 
 
 def register():

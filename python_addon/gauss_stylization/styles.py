@@ -10,11 +10,12 @@ def rotation_matrix(slot):
     return np.array(slot.orientation.to_matrix(), dtype=np.float64)
 
 
-def make_style(gauss_core, slot):
+def make_style(gauss_core, slot, rotation=None):
     """One style slot -> gauss_core.Style (may raise ValueError).
 
-    Every slot field whose change rebuilds styles (Live.STYLES in schema.SLOT) is used here."""
-    rotation = rotation_matrix(slot)
+    Every slot field whose change rebuilds styles (Live.STYLES in schema.SLOT) is used here.
+    rotation: 3x3, instead of the slot's orientation (auto-orient evaluates the unrotated style)."""
+    rotation = rotation_matrix(slot) if rotation is None else np.asarray(rotation, np.float64)
     if slot.preset == CUSTOM:
         # Custom normals are rotated here, so "orientation" means the same for both kinds.
         normals = np.array(slot.custom_normal_list(), dtype=np.float64).reshape(-1, 3)
