@@ -19,17 +19,19 @@ if "bpy" in locals():  # F8 / script reload: reload the submodules too
     import importlib
     for _module in (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
                     rest_store, settings_io, session, runs, viewport, directions, orientation, surface,
-                    style_from_data, operators, slot_operators, ui):
+                    style_from_data, gauss_sphere, gpu_compat, sphere_overlay, sphere_editing, operators,
+                    slot_operators, ui):
         importlib.reload(_module)
 else:
     from . import (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
                    rest_store, settings_io, session, runs, viewport, directions, orientation, surface,
-                   style_from_data, operators, slot_operators, ui)
+                   style_from_data, gauss_sphere, gpu_compat, sphere_overlay, sphere_editing, operators,
+                   slot_operators, ui)
 
 import bpy
 
 classes = (properties.classes + operators.classes + slot_operators.classes + style_from_data.classes
-           + ui.classes)
+           + sphere_editing.classes + ui.classes)
 
 
 def register():
@@ -37,9 +39,13 @@ def register():
         bpy.utils.register_class(cls)
     properties.register_pointer()
     runs.register_handlers()
+    sphere_overlay.register()
+    sphere_editing.register_keymaps()
 
 
 def unregister():
+    sphere_editing.unregister_keymaps()
+    sphere_overlay.unregister()
     runs.unregister_handlers()
     runs.stop_all(bpy.context)
     properties.unregister_pointer()

@@ -11,7 +11,8 @@ import math
 
 import numpy as np
 from bpy.props import (
-    CollectionProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty, StringProperty,
+    BoolProperty, CollectionProperty, EnumProperty, FloatProperty, FloatVectorProperty, IntProperty,
+    StringProperty,
 )
 
 from . import native
@@ -163,6 +164,17 @@ class Text(Field):
 
     def prop(self, _classes):
         return StringProperty(name=self.label, description=self.tooltip, default=self.default)
+
+
+class Toggle(Field):
+    """A checkbox."""
+
+    def __init__(self, name, label, tooltip, default=False, **options):
+        super().__init__(name, label, tooltip, **options)
+        self.default = default
+
+    def prop(self, _classes):
+        return BoolProperty(name=self.label, description=self.tooltip, default=self.default)
 
 
 class VertexGroup(Text):

@@ -5,7 +5,7 @@ import time
 import bpy
 from bpy.props import StringProperty
 
-from . import rest_store, runs, schema, settings_io
+from . import rest_store, runs, schema, settings_io, sphere_editing
 from .errors import NativeModuleError, SettingsError
 from .session import Session, ensure_style_slot
 from .validation import object_problem, poll_result
@@ -129,6 +129,8 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             return {'PASS_THROUGH'}  # other operators may own this timer event
         if event.value != 'PRESS':
             return {'PASS_THROUGH'}
+        if sphere_editing.claims(context, event):
+            return {'PASS_THROUGH'}  # a press on the Gauss sphere edits it (sphere_editing)
         if event.type == 'ESC' or (event.type == 'RIGHTMOUSE' and over_viewport(context, event)):
             self.stop(context, keep=False)
             return {'CANCELLED'}

@@ -13,7 +13,7 @@ solver call for slot fields (styles.make_style); see python_addon/README.md.
 
 from . import native
 from .fields import (
-    Choice, Direction, Euler, Float, Index, Int, Live, Normals, Panel, Slots, Text, VertexGroup,
+    Choice, Direction, Euler, Float, Index, Int, Live, Normals, Panel, Slots, Text, Toggle, VertexGroup,
 )
 
 FACTS = native.facts()
@@ -100,6 +100,11 @@ OBJECT = (
            (('FIRST_SLOT', "First Style", "Faces outside every style's group use the first style", 0),
             ('UNSTYLED', "Unstyled", "Faces outside every style's group only keep their shape", 1)),
            'FIRST_SLOT', live=Live.REGIONS, panel=Panel.STYLES, text="Other Faces"),
+    Toggle("show_gauss_sphere", "Show Gauss Sphere",
+           "Draw the Gauss sphere in a corner of the 3D view: the active style's g as a heat map, its "
+           "preferred normals as dots and the mesh's face normals as points. With a Custom style active, "
+           "click the sphere to add a normal, drag a dot to move it, right-click to remove the nearest",
+           panel=Panel.STYLES, text="Gauss Sphere"),
     Slots("styles", "Styles", "GaussStyleSlot", SLOT, owner_name=lambda slot: "Style '%s'" % slot.name),
     Index("active_style_index", "Active Style"),
 )

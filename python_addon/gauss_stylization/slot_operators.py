@@ -9,6 +9,7 @@ import bpy
 from bpy.props import EnumProperty
 
 from .schema import CUSTOM
+from .styles import active_slot
 from .validation import poll_result
 
 
@@ -19,10 +20,8 @@ def _settings(context):
 
 def _active_custom_slot(context):
     settings = _settings(context)
-    if settings is None or not 0 <= settings.active_style_index < len(settings.styles):
-        return None
-    slot = settings.styles[settings.active_style_index]
-    return slot if slot.preset == CUSTOM else None
+    slot = None if settings is None else active_slot(settings)
+    return slot if slot is not None and slot.preset == CUSTOM else None
 
 
 class _StyleList:

@@ -8,12 +8,9 @@ from mathutils import Matrix
 
 from . import directions, native, orientation, schema, settings_io, styles, surface
 from .errors import NativeModuleError, SettingsError
-from .fields import Live, Where, check_all
 from .validation import poll_result
 
 MAX_DIRECTIONS = 32  # default number of directions taken from an example
-# What a style's g depends on: the slot fields whose change rebuilds styles.
-_STYLE_FIELDS = tuple(f for f in schema.SLOT if f.live is Live.STYLES)
 
 
 def _mesh_object(context):
@@ -107,26 +104,20 @@ class OBJECT_OT_gauss_style_auto_orient(bpy.types.Operator):
     def poll(cls, context):
         problem = _mesh_problem(context)
         if problem is None:
-            settings = context.active_object.gauss_stylization
-            if not 0 <= settings.active_style_index < len(settings.styles):
+            if styles.active_slot(context.active_object.gauss_stylization) is None:
                 problem = "Add a style slot first"
         return poll_result(cls, problem)
 
     def execute(self, context):
         obj = context.active_object
-        settings = obj.gauss_stylization
-        slot = settings.styles[settings.active_style_index]
+        slot = styles.active_slot(obj.gauss_stylization)
         gauss_core = _core(self)
         if gauss_core is None:
             return {'CANCELLED'}
         try:
-            check_all(_STYLE_FIELDS, slot, Where(obj, {}, "Style '%s'" % slot.name))
-            style = styles.make_style(gauss_core, slot, rotation=np.eye(3))
+            style = styles.checked_style(gauss_core, obj, slot, rotation=np.eye(3))
         except SettingsError as exc:
             self.report({'ERROR'}, str(exc))
-            return {'CANCELLED'}
-        except ValueError as exc:
-            self.report({'ERROR'}, "Style '%s' cannot be built: %s" % (slot.name, exc))
             return {'CANCELLED'}
         normals, areas = surface.face_normals(obj)
         if not (areas > 0).any():

@@ -2,12 +2,25 @@
 
 import numpy as np
 
+from . import schema
+from .errors import SettingsError
+from .fields import Live, Where, check_all
 from .schema import CUSTOM, PIN_THRESHOLD, REGION_THRESHOLD
+
+# What a slot's style (its g) depends on: the fields whose change rebuilds styles.
+STYLE_FIELDS = tuple(f for f in schema.SLOT if f.live is Live.STYLES)
+_SLOT_NAME = schema.field(schema.OBJECT, "styles").owner_name
 
 
 def rotation_matrix(slot):
     """The slot's orientation (Euler) as a 3x3 float64 rotation matrix."""
     return np.array(slot.orientation.to_matrix(), dtype=np.float64)
+
+
+def active_slot(settings):
+    """The slot selected in the list (settings.active_style_index), or None."""
+    index = settings.active_style_index
+    return settings.styles[index] if 0 <= index < len(settings.styles) else None
 
 
 def make_style(gauss_core, slot, rotation=None):
@@ -22,6 +35,16 @@ def make_style(gauss_core, slot, rotation=None):
         return gauss_core.Style(normals=normals @ rotation.T, sigma=slot.sigma, mu=slot.mu)
     return gauss_core.Style.preset(slot.preset.lower(), sigma=slot.sigma, mu=slot.mu,
                                    rotation=rotation, axis_contribution=slot.axis_contribution)
+
+
+def checked_style(gauss_core, obj, slot, rotation=None):
+    """make_style for one slot of ``obj`` on its own (the sphere overlay, auto-orient): its
+    style fields are checked first, and any problem raises SettingsError naming the slot."""
+    check_all(STYLE_FIELDS, slot, Where(obj, {}, _SLOT_NAME(slot)))
+    try:
+        return make_style(gauss_core, slot, rotation)
+    except ValueError as exc:
+        raise SettingsError("%s cannot be built: %s" % (_SLOT_NAME(slot), exc)) from exc
 
 
 def make_styles(gauss_core, slots):

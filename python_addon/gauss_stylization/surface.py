@@ -17,8 +17,15 @@ def live_session(obj):
     return None if run is None else run.session
 
 
-def coords_and_triangles(obj):
-    """(coords #V by 3 float32, triangles #T by 3 int32) of ``obj``'s mesh now."""
+_triangles = {}  # "key": a mesh's identity and counts, "triangles": its loop triangles
+
+
+def coords_and_triangles(obj, cached_topology=False):
+    """(coords #V by 3 float32, triangles #T by 3 int32) of ``obj``'s mesh now.
+
+    cached_topology: reuse the triangles read last time for the same mesh with the same
+    vertex, face and corner counts (a viewport overlay redraws far more often than
+    artists change topology; a change that keeps every count shows at the next change)."""
     session = live_session(obj)
     if session is not None:
         current = session.result if session.steps else session.arrays.coords
@@ -26,7 +33,10 @@ def coords_and_triangles(obj):
     mesh = obj.data
     coords = np.empty((len(mesh.vertices), 3), np.float32)
     mesh_io.read_base_coords(mesh, coords)
-    return coords, mesh_io.read_loop_triangles(mesh)[0]
+    key = (mesh.as_pointer(), len(mesh.vertices), len(mesh.polygons), len(mesh.loops))
+    if not cached_topology or _triangles.get("key") != key:
+        _triangles.update(key=key, triangles=mesh_io.read_loop_triangles(mesh)[0])
+    return coords, _triangles["triangles"]
 
 
 def face_normals(obj, coords=None, triangles=None):

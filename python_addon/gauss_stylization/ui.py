@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import native, operators, runs, schema
+from . import native, operators, runs, schema, styles
 from .errors import NativeModuleError
 from .fields import Panel
 
@@ -93,9 +93,10 @@ class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
             return
         col = _split_column(layout)
         _draw_rows(col, obj, settings, schema.OBJECT, Panel.STYLES)
-        if 0 <= settings.active_style_index < len(settings.styles):
+        slot = styles.active_slot(settings)
+        if slot is not None:
             col.separator()
-            _draw_rows(col, obj, settings.styles[settings.active_style_index], schema.SLOT, Panel.SLOT)
+            _draw_rows(col, obj, slot, schema.SLOT, Panel.SLOT)
 
 
 def _split_column(layout):

@@ -29,15 +29,24 @@ def _inside(rect, x, y):
     return rect.x <= x < rect.x + rect.width and rect.y <= y < rect.y + rect.height
 
 
+def viewport_region_at(context, x, y):
+    """(area, region) of the 3D viewport drawing region under window pixel (x, y), or None
+    over its sidebar, header or toolbar (they overlap the main region) and elsewhere."""
+    for area in context.window.screen.areas:
+        if area.type != 'VIEW_3D' or not _inside(area, x, y):
+            continue
+        # Sidebar and headers overlap the main region, so they are tested first.
+        if any(region.type != 'WINDOW' and _inside(region, x, y) for region in area.regions):
+            return None
+        for region in area.regions:
+            if region.type == 'WINDOW' and _inside(region, x, y):
+                return area, region
+    return None
+
+
 def over_viewport(context, event):
     """Is the mouse over a 3D viewport's drawing region (not its sidebar, header or toolbar)?
 
     Clicks elsewhere must reach the UI, so settings can be changed while running.
     """
-    x, y = event.mouse_x, event.mouse_y
-    for area in context.window.screen.areas:
-        if area.type != 'VIEW_3D' or not _inside(area, x, y):
-            continue
-        # Sidebar and headers overlap the main region, so they are tested first.
-        return not any(region.type != 'WINDOW' and _inside(region, x, y) for region in area.regions)
-    return False
+    return viewport_region_at(context, event.mouse_x, event.mouse_y) is not None
