@@ -2,10 +2,10 @@
 # Installs what the project needs from Debian 12 (run as root); does nothing if all is present.
 set -euo pipefail
 packages=(
-  build-essential cmake git
+  build-essential binutils cmake git
   libeigen3-dev pybind11-dev python3-dev python3-numpy python3-pytest libgtest-dev
   blender xvfb xauth
-  clang libclang-rt-14-dev libomp-14-dev
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -4,12 +4,13 @@
     python3 scripts/package_addon.py BUILD_DIR OUT_DIR [--verify-install]
 
 BUILD_DIR is a build tree of scripts/build.sh (it holds the compiled solver module,
-BUILD_DIR/addon/gauss_stylization/gauss_core*.so). Writes two zips to OUT_DIR:
+BUILD_DIR/addon/gauss_stylization/gauss_core*.so). Writes to OUT_DIR:
 
-  gauss_stylization-VERSION-addon-TAG.zip      legacy add-on (Blender 3.4 ... 4.x):
-      Preferences > Add-ons > Install...; one top-level folder gauss_stylization/
-  gauss_stylization-VERSION-extension-TAG.zip  extension (Blender 4.2+):
-      Preferences > Get Extensions > Install from Disk...; blender_manifest.toml at the root
+  gauss_stylization-VERSION-addon-TAG.zip      legacy add-on: Preferences > Add-ons > Install...;
+      one top-level folder gauss_stylization/
+  gauss_stylization-VERSION-extension-TAG.zip  extension (Blender 4.2+): Preferences > Get
+      Extensions > Install from Disk...; blender_manifest.toml at the root; only for a Python
+      that some Blender 4.2+ runs (not for 3.10)
 
 TAG names the Python the module was built for (e.g. cp311-linux_x86_64): the zip only
 works in a Blender that runs that Python version. The add-on's Python files come from
@@ -19,8 +20,12 @@ reproducible (sorted entries, fixed timestamps).
 
 --verify-install installs the legacy zip into a throw-away Blender user configuration
 (BLENDER_USER_CONFIG / BLENDER_USER_SCRIPTS in a temporary folder, so the machine's own
-configuration is not touched), enables it and stylizes a cube with it, using `blender`
+configuration is not touched), enables it and stylizes a sphere with it, using `blender`
 from PATH (or $BLENDER).
+
+Which Blender releases run which Python is written once, in BLENDER_FOR_PYTHON below: the
+manifest's blender_version_min/max and the README.txt in each zip (which Blender loads it,
+the glibc it needs, which zip the other Blenders need) derive from it.
 """
 
 import argparse
@@ -34,6 +39,8 @@ import tempfile
 import tomllib
 import zipfile
 
+import module_reach  # scripts/module_reach.py: what the module needs from the system
+
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SOURCE = os.path.join(REPO, "python_addon", "gauss_stylization")
 MANIFEST_TEMPLATE = os.path.join(REPO, "packaging", "blender_manifest.toml.in")
@@ -42,19 +49,51 @@ ZIP_DATE = (1980, 1, 1, 0, 0, 0)
 # CPython extension suffix, e.g. gauss_core.cpython-311-x86_64-linux-gnu.so
 SO_PATTERN = re.compile(r"^gauss_core\.cpython-(?P<major>\d)(?P<minor>\d+)-(?P<platform>[^.]+)\.so$")
 
+# Which Blender runs which Python (the module only loads in the Python it was built for): official
+# blender.org releases, first and last inclusive, with the numpy they bundle; a Linux distribution's
+# blender package runs the system Python instead ("also"). The one place these facts are written.
+BLENDER_FOR_PYTHON = {
+    "3.10": {"official": ((3, 1), (4, 0)), "numpy": "1.x", "also": ()},
+    "3.11": {"official": ((4, 1), (5, 0)), "numpy": "1.x", "also": ("Debian 12's blender package (3.4.1)",)},
+    "3.13": {"official": ((5, 1), (5, 1)), "numpy": "2.x", "also": ()},
+}
+EXTENSIONS_SINCE = (4, 2)  # the first Blender that installs extensions (blender_manifest.toml)
+
 
 def fail(message):
     sys.exit("package_addon.py: " + message)
 
 
-def addon_version():
-    """bl_info["version"] of the add-on as "X.Y.Z" (read without importing bpy)."""
+def addon_info():
+    """The add-on's bl_info (read without importing bpy)."""
     with open(os.path.join(SOURCE, "__init__.py"), encoding="utf-8") as handle:
         tree = ast.parse(handle.read())
     for node in tree.body:
         if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == "bl_info" for t in node.targets):
-            return ".".join(str(part) for part in ast.literal_eval(node.value)["version"])
+            return ast.literal_eval(node.value)
     fail("no bl_info in %s" % SOURCE)
+
+
+def release(version):
+    return "%d.%d" % version[:2]
+
+
+def releases(first, last):
+    return release(first) if first == last else "%s to %s" % (release(first), release(last))
+
+
+def blender_ranges(python, addon_min):
+    """Official Blender releases that load a module built for `python`, as (first, last) pairs of
+    (major, minor): for the classic zip, and for the extension zip (None: no extension Blender)."""
+    row = BLENDER_FOR_PYTHON.get(python)
+    if row is None:
+        fail("the module was built for Python %s, which no Blender release runs (Blender runs %s): build "
+             "it against Blender's Python (README, \"Which Blender can load this build\")"
+             % (python, ", ".join(BLENDER_FOR_PYTHON)))
+    first, last = row["official"]
+    classic = (max(first, addon_min), last)
+    extension = (max(first, EXTENSIONS_SINCE), last) if last >= EXTENSIONS_SINCE else None
+    return classic, extension
 
 
 def native_module(build_dir):
@@ -73,6 +112,19 @@ def native_module(build_dir):
     if match["platform"] != "x86_64-linux-gnu":
         fail("built for %s; the manifest only declares linux-x64" % match["platform"])
     return found[0], python, "cp%s%s-linux_x86_64" % (match["major"], match["minor"])
+
+
+def module_glibc(so_path):
+    """The oldest glibc the module loads on, e.g. "2.17", as readelf shows it (scripts/module_reach.py);
+    warns about anything beyond the allowance the README documents."""
+    try:
+        newest = module_reach.newest_glibc(so_path)
+        beyond = module_reach.problems(so_path)
+    except RuntimeError as exc:
+        fail("cannot inspect %s: %s" % (so_path, exc))
+    for line in beyond:
+        print("package_addon.py: warning: the module %s; the zips' README.txt names what it needs" % line)
+    return ".".join(map(str, newest)) if newest else "(any version)"
 
 
 def addon_files(so_path):
@@ -109,15 +161,20 @@ def mode_of(name):
     return 0o755 if name.endswith(".so") else 0o644
 
 
-def manifest_text(version, python):
+def manifest_text(version, python, extension_range):
     with open(MANIFEST_TEMPLATE, encoding="utf-8") as handle:
         text = handle.read()
-    text = text.replace("@VERSION@", version).replace("@PYTHON@", python)
+    first, last = extension_range
+    # blender_version_max is the first release the extension does NOT support.
+    for placeholder, value in (("@VERSION@", version), ("@PYTHON@", python),
+                               ("@BLENDER_MIN@", "%d.%d.0" % first),
+                               ("@BLENDER_MAX@", "%d.%d.0" % (last[0], last[1] + 1))):
+        text = text.replace(placeholder, value)
     if re.search(r"@[A-Z_]+@", text):
         fail("unfilled placeholder in %s" % MANIFEST_TEMPLATE)
     manifest = tomllib.loads(text)  # must parse, and follow Blender's rules for these fields
     for key in ("schema_version", "id", "version", "name", "tagline", "maintainer", "type",
-                "blender_version_min", "license"):
+                "blender_version_min", "blender_version_max", "license"):
         if key not in manifest:
             fail("manifest lacks %r" % key)
     tagline = manifest["tagline"]
@@ -126,6 +183,36 @@ def manifest_text(version, python):
     if manifest["id"] != PACKAGE:
         fail("manifest id must be %r" % PACKAGE)
     return text
+
+
+def readme_text(kind, version, so_name, python, blender, glibc, addon_min):
+    """README.txt of a zip: which Blender loads it, what it needs, which zip the other Blenders need."""
+    row = BLENDER_FOR_PYTHON[python]
+    loads = ["official Blender %s (Python %s, numpy %s)" % (releases(*blender), python, row["numpy"])]
+    if kind == "add-on":
+        loads += list(row["also"])
+    others = ["  official Blender %s%s (Python %s): the add-on zip whose name ends in -cp%s-linux_x86_64.zip"
+              % (releases(*blender_ranges(other, addon_min)[0]), "".join(", " + a for a in entry["also"]),
+                 other, other.replace(".", ""))
+              for other, entry in BLENDER_FOR_PYTHON.items() if other != python]
+    install = ("Edit > Preferences > Add-ons > Install... (in Blender 4.2+: Install from Disk... in the "
+               "drop-down menu at the top right of the Add-ons section), then enable Mesh: Gauss Stylization."
+               if kind == "add-on" else
+               "Edit > Preferences > Get Extensions, the drop-down menu at the top right, Install from Disk...")
+    return "\n".join([
+        "Gauss Stylization %s, %s for Blender" % (version, kind),
+        "",
+        "Solver module: %s, built for Python %s, Linux x86-64." % (so_name, python),
+        "It needs glibc %s or newer and no other system library." % glibc,
+        "",
+        "Loads in: " + "; ".join(loads) + ".",
+        "Other Blenders run another Python and cannot load this module; they need:",
+        *others,
+        "or a module built for their Python (source README, \"Which Blender can load this build\").",
+        "",
+        "Install: " + install,
+        "",
+    ])
 
 
 VERIFY_SCRIPT = r'''
@@ -191,27 +278,39 @@ def main():
     parser.add_argument("build_dir")
     parser.add_argument("out_dir")
     parser.add_argument("--verify-install", action="store_true",
-                        help="install the legacy zip into a temporary Blender user config and use it")
+                        help="install the classic zip into a temporary Blender user config and use it")
     args = parser.parse_args()
     build_dir, out_dir = os.path.abspath(args.build_dir), os.path.abspath(args.out_dir)
-    version = addon_version()
+    info = addon_info()
+    version = ".".join(str(part) for part in info["version"])
     so_path, python, tag = native_module(build_dir)
-    files = addon_files(so_path)
+    addon_min = tuple(info["blender"][:2])
+    classic_range, extension_range = blender_ranges(python, addon_min)
+    glibc = module_glibc(so_path)
+    packaged = [(name, read(path), mode_of(name)) for path, name in addon_files(so_path)]
+    so_name = os.path.basename(so_path)
     os.makedirs(out_dir, exist_ok=True)
+    print("add-on %s, solver module for Python %s (%s), needs glibc %s" % (version, python, so_name, glibc))
 
-    legacy = os.path.join(out_dir, "%s-%s-addon-%s.zip" % (PACKAGE, version, tag))
-    write_zip(legacy, [("%s/%s" % (PACKAGE, name), read(path), mode_of(name)) for path, name in files])
+    classic = os.path.join(out_dir, "%s-%s-addon-%s.zip" % (PACKAGE, version, tag))
+    readme = readme_text("add-on", version, so_name, python, classic_range, glibc, addon_min)
+    write_zip(classic, [("%s/%s" % (PACKAGE, name), data, mode)
+                        for name, data, mode in packaged + [("README.txt", readme.encode("utf-8"), 0o644)]])
+    print("classic add-on zip (official Blender %s%s): %s"
+          % (releases(*classic_range), "".join(", " + a for a in BLENDER_FOR_PYTHON[python]["also"]), classic))
 
-    extension = os.path.join(out_dir, "%s-%s-extension-%s.zip" % (PACKAGE, version, tag))
-    entries = [(name, read(path), mode_of(name)) for path, name in files]
-    entries.append(("blender_manifest.toml", manifest_text(version, python).encode("utf-8"), 0o644))
-    write_zip(extension, entries)
-
-    print("add-on %s, solver module for Python %s (%s)" % (version, python, os.path.basename(so_path)))
-    print("legacy add-on zip (Blender 3.4+): %s" % legacy)
-    print("extension zip (Blender 4.2+):     %s" % extension)
+    if extension_range is None:
+        print("no extension zip: Blender %s and later run another Python than %s"
+              % (release(EXTENSIONS_SINCE), python))
+    else:
+        extension = os.path.join(out_dir, "%s-%s-extension-%s.zip" % (PACKAGE, version, tag))
+        readme = readme_text("extension", version, so_name, python, extension_range, glibc, addon_min)
+        manifest = manifest_text(version, python, extension_range)
+        write_zip(extension, packaged + [("README.txt", readme.encode("utf-8"), 0o644),
+                                         ("blender_manifest.toml", manifest.encode("utf-8"), 0o644)])
+        print("extension zip (Blender %s): %s" % (releases(*extension_range), extension))
     if args.verify_install:
-        verify_install(legacy, python)
+        verify_install(classic, python)
 
 
 if __name__ == "__main__":

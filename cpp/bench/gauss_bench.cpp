@@ -1,5 +1,5 @@
-// gauss_bench MESH [--style cube] [--lambda 4] [--sigma 4] [--mu 1] [--steps 50] [--admm 1]
-//             [--threads N] [--out OUT.obj]
+// gauss_bench MESH [--style NAME] [--lambda L] [--sigma S] [--mu M] [--steps N] [--admm N]
+//             [--threads N] [--out OUT.obj]        (defaults: the solver's, printed by usage())
 // Times set-up and steps of the solver on one mesh and reports how far the style took hold.
 #include <algorithm>
 #include <chrono>
@@ -25,10 +25,15 @@ double median(std::vector<double> v) {
   return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
 }
 
+constexpr int kDefaultSteps = 50;
+
 int usage() {
+  namespace settings = gauss::settings;
   std::fprintf(stderr,
-               "usage: gauss_bench MESH [--style cube] [--lambda 4] [--sigma 4] [--mu 1] [--steps 50]\n"
-               "                   [--admm 1] [--threads N] [--out OUT.obj]\n");
+               "usage: gauss_bench MESH [--style %s] [--lambda %g] [--sigma %g] [--mu %g] [--steps %d]\n"
+               "                   [--admm %d] [--threads N] [--out OUT.obj]\n",
+               settings::default_preset, settings::lambda.default_value, settings::sigma.default_value,
+               settings::mu.default_value, kDefaultSteps, static_cast<int>(settings::admm_iterations.default_value));
   return 2;
 }
 
@@ -40,7 +45,7 @@ int main(int argc, char** argv) {
   namespace settings = gauss::settings;
   double lambda = settings::lambda.default_value, sigma = settings::sigma.default_value,
          mu = settings::mu.default_value;
-  int steps = 50, admm = static_cast<int>(settings::admm_iterations.default_value), threads = 0;
+  int steps = kDefaultSteps, admm = static_cast<int>(settings::admm_iterations.default_value), threads = 0;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (i + 1 >= argc) return usage();

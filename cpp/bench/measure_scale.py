@@ -5,7 +5,7 @@ The mesh is a lumpy sphere made from a subdivided cube, n by n quads per side (n
 vertices, 1,002,252 faces), generated here with numpy. Runs through gauss_core as the add-on does;
 scripts/measure_scale.sh wraps it in /usr/bin/time -v for the peak resident set size.
 
-usage: measure_scale.py [--n 289] [--steps 5] [--style cube] [--threads N]
+usage: measure_scale.py [--n 289] [--steps 5] [--style NAME] [--threads N]   (style: gauss_core.DEFAULTS)
 Imports gauss_core from $GAUSS_BUILD_DIR/python (default: <repo>/build/python).
 """
 import argparse
@@ -59,7 +59,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--n", type=int, default=289)
     ap.add_argument("--steps", type=int, default=5)
-    ap.add_argument("--style", default="cube")
+    ap.add_argument("--style", default=gauss_core.DEFAULTS["preset"], choices=gauss_core.PRESETS)
     ap.add_argument("--threads", type=int, default=0)
     args = ap.parse_args()
     if args.threads > 0:

@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -12,75 +13,26 @@
 #include <vector>
 
 
+#include "gauss/direction_merge.h"
 #include "gauss/gauss_solver.h"
 #include "gauss/parallel.h"
 #include "gauss/presets.h"
 #include "gauss/settings.h"
+#include "numpy_arrays.h"
 
 namespace py = pybind11;
 namespace settings = gauss::settings;
 using gauss::GaussSolver;
 using gauss::PreferenceFunction;
 using gauss::StyleParams;
+using gauss_python::as_array;
+using gauss_python::eval_points;
+using gauss_python::read_matrix;
+using gauss_python::read_rotation;
+using gauss_python::read_vector3;
+using gauss_python::to_array;
 
 namespace {
-
-// Reads an (n, cols) array of any real dtype and any strides into a flat row-major vector.
-template <typename Out>
-std::vector<Out> read_matrix(const py::handle& obj, py::ssize_t cols, const char* name, bool integer) {
-  py::array arr = py::array::ensure(obj);
-  if (!arr) throw py::type_error(std::string(name) + " must be array-like");
-  const char kind = arr.dtype().kind();
-  const bool ok_kind = integer ? (kind == 'i' || kind == 'u') : (kind == 'f' || kind == 'i' || kind == 'u');
-  if (!ok_kind) {
-    std::ostringstream msg;
-    msg << name << " must have a" << (integer ? "n integer" : " floating-point") << " dtype, got " << py::str(arr.dtype()).cast<std::string>();
-    throw py::type_error(msg.str());
-  }
-  if (arr.ndim() == 1 && cols == 1) {
-  } else if (arr.ndim() != 2 || arr.shape(1) != cols) {
-    std::ostringstream msg;
-    msg << name << " must have shape (n, " << cols << "), got (";
-    for (py::ssize_t i = 0; i < arr.ndim(); ++i) msg << (i ? ", " : "") << arr.shape(i);
-    msg << (arr.ndim() == 1 ? ",)" : ")");
-    throw py::value_error(msg.str());
-  }
-  // Convert through numpy only when the dtype differs; float32/int32 from Blender take this path
-  // inside native code, the caller never copies.
-  py::array_t<Out, py::array::forcecast> typed(arr);
-  std::vector<Out> out(static_cast<size_t>(typed.size()));
-  if (cols == 1 && typed.ndim() == 1) {
-    auto r = typed.template unchecked<1>();
-    for (py::ssize_t i = 0; i < r.shape(0); ++i) out[i] = r(i);
-  } else {
-    auto r = typed.template unchecked<2>();
-    for (py::ssize_t i = 0; i < r.shape(0); ++i)
-      for (py::ssize_t j = 0; j < cols; ++j) out[i * cols + j] = r(i, j);
-  }
-  return out;
-}
-
-Eigen::Matrix3d read_rotation(const py::object& obj) {
-  if (obj.is_none()) return Eigen::Matrix3d::Identity();
-  std::vector<double> m = read_matrix<double>(obj, 3, "rotation", false);
-  if (m.size() != 9) throw py::value_error("rotation must be a 3x3 matrix");
-  Eigen::Matrix3d R;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) R(i, j) = m[3 * i + j];
-  return R;
-}
-
-// py::array::ensure returns a null handle (numpy's error cleared) for ragged lists and the like.
-py::array as_array(const py::handle& obj, const char* name) {
-  py::array arr = py::array::ensure(obj);
-  if (!arr) throw py::type_error(std::string(name) + " must be array-like");
-  return arr;
-}
-
-Eigen::Vector3d read_vector3(const py::object& obj, const char* name) {
-  std::vector<double> v = read_matrix<double>(as_array(obj, name).reshape({1, -1}), 3, name, false);
-  return Eigen::Vector3d(v[0], v[1], v[2]);
-}
 
 // A style as Python sees it: its parameters (for read-back) plus the evaluated function.
 struct Style {
@@ -93,24 +45,6 @@ Style make_style(std::string name, StyleParams params) {
   Style s{std::move(name), params, nullptr};
   s.g = std::make_shared<PreferenceFunction>(params);
   return s;
-}
-
-py::array_t<double> to_array(const std::vector<Eigen::Vector3d>& v) {
-  py::array_t<double> out({static_cast<py::ssize_t>(v.size()), py::ssize_t(3)});
-  auto w = out.mutable_unchecked<2>();
-  for (size_t i = 0; i < v.size(); ++i)
-    for (int k = 0; k < 3; ++k) w(i, k) = v[i][k];
-  return out;
-}
-
-// Evaluates f at one point (shape (3,)) or many (shape (n, 3)).
-template <typename F>
-py::object eval_points(const py::object& x, F&& f) {
-  py::array arr = py::array::ensure(x);
-  if (!arr) throw py::type_error("x must be array-like");
-  const bool single = arr.ndim() == 1;
-  std::vector<double> pts = read_matrix<double>(single ? arr.reshape({1, -1}) : arr, 3, "x", false);
-  return f(pts, single);
 }
 
 class Solver {
@@ -126,7 +60,7 @@ class Solver {
                                             static_cast<int>(f.size() / 3), pins,
                                             targets.empty() ? nullptr : targets.data(), lam);
     solver_->set_admm_iterations(admm_iterations);
-    styles_.push_back(make_style(settings::default_preset, gauss::preset_style(settings::default_preset)));
+    styles_.push_back(make_style(settings::default_preset, gauss::default_style()));
   }
 
   void set_styles(const std::vector<Style>& styles) {
@@ -152,6 +86,29 @@ class Solver {
     read_pins(pinned, positions, pins, targets);
     std::lock_guard<std::mutex> lock(mutex_);
     solver_->set_pins(pins, targets.empty() ? nullptr : targets.data());
+  }
+  void set_pin_positions(const py::object& positions) {
+    const size_t num_pins = solver_->pinned().size();
+    py::array arr = as_array(positions, "positions");
+    if (arr.ndim() == 2 && static_cast<size_t>(arr.shape(0)) != num_pins) {  // before copying a huge array
+      std::ostringstream msg;
+      msg << "positions must have one row per pinned vertex (" << num_pins << "), got " << arr.shape(0);
+      throw py::value_error(msg.str());
+    }
+    std::vector<double> targets = read_matrix<double>(arr, 3, "positions", false);
+    std::lock_guard<std::mutex> lock(mutex_);
+    solver_->set_pin_positions(targets.data(), static_cast<int>(targets.size() / 3));
+  }
+  py::array_t<int64_t> pinned() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const std::vector<int64_t>& pins = solver_->pinned();
+    py::array_t<int64_t> out(static_cast<py::ssize_t>(pins.size()));
+    std::copy(pins.begin(), pins.end(), out.mutable_data());
+    return out;
+  }
+  py::array_t<double> pin_positions() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return to_array(solver_->pin_positions());
   }
   void step(int n) {
     if (n < 0) throw py::value_error("the number of steps must be >= 0");
@@ -232,6 +189,52 @@ PYBIND11_MODULE(gauss_core, m) {
   defaults["preset"] = settings::default_preset;
   m.attr("DEFAULTS") = defaults;
   m.attr("LIMITS") = limits;
+  py::dict sizes;
+  sizes["normals"] = settings::max_style_normals;
+  sizes["rings"] = settings::max_style_rings;
+  m.attr("SIZE_LIMITS") = sizes;
+
+  m.def("merge_directions", [](const py::object& normals, double max_angle_degrees, const py::object& weights) {
+        std::vector<double> n = read_matrix<double>(normals, 3, "normals", false);
+        std::vector<Eigen::Vector3d> dirs(n.size() / 3);
+        for (size_t i = 0; i < dirs.size(); ++i) {
+          const Eigen::Vector3d d(n[3 * i], n[3 * i + 1], n[3 * i + 2]);
+          const double len = d.norm();
+          if (!d.allFinite() || !(len > 1e-300) || !std::isfinite(len)) {
+            std::ostringstream msg;
+            msg << "normal " << i << " is zero, NaN or infinite; every direction must be a finite, non-zero 3-vector";
+            throw py::value_error(msg.str());
+          }
+          dirs[i] = d / len;
+        }
+        std::vector<double> w;
+        if (!weights.is_none()) {
+          w = read_matrix<double>(weights, 1, "weights", false);
+          if (w.size() != dirs.size()) {
+            std::ostringstream msg;
+            msg << "weights must have one entry per normal (" << dirs.size() << "), got " << w.size();
+            throw py::value_error(msg.str());
+          }
+        }
+        if (!(max_angle_degrees >= 0.0 && max_angle_degrees <= 90.0))
+          throw py::value_error("max_angle_degrees must lie between 0 and 90 (got " + std::to_string(max_angle_degrees) + ")");
+        gauss::MergedDirections md;
+        {
+          py::gil_scoped_release release;
+          md = gauss::merge_directions(dirs, w, max_angle_degrees * (M_PI / 180.0));
+        }
+        py::array_t<double> counts(static_cast<py::ssize_t>(md.weights.size()));
+        for (size_t i = 0; i < md.weights.size(); ++i) counts.mutable_at(i) = md.weights[i];
+        return py::make_tuple(to_array(md.directions), counts);
+      }, py::arg("normals"), py::arg("max_angle_degrees"), py::arg("weights") = py::none(), R"doc(
+Merges near-parallel directions: (directions (M, 3), weights (M,)).
+
+normals: (K, 3) non-zero vectors (normalized here); weights: (K,) values >= 0 (e.g. face areas),
+default 1 each, so the second result counts the directions merged into each one.
+Directions are taken as seeds in order of decreasing weight (ties: by direction); each seed takes
+every remaining direction within max_angle_degrees (0..90) of it and becomes their weighted mean.
+So every input lies within max_angle_degrees of its seed, any two seeds are farther apart than that,
+and the result does not depend on the order of the inputs. O(K log K).)doc");
 
   m.def("set_num_threads", [](int n) {
         if (n < 1) throw py::value_error("the number of threads must be >= 1");
@@ -254,6 +257,10 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
                        const py::object& axis, const py::object& ring_offsets, double axis_contribution) {
              StyleParams p;
              if (!normals.is_none() && as_array(normals, "normals").size() > 0) {
+               // Refused before the copy: a huge array must not cost memory first.
+               if (as_array(normals, "normals").size() > 3 * static_cast<py::ssize_t>(settings::max_style_normals))
+                 throw py::value_error("a style takes at most " + std::to_string(settings::max_style_normals) +
+                                       " preferred normals; merge near-parallel ones first (merge_directions)");
                std::vector<double> n = read_matrix<double>(normals, 3, "normals", false);
                for (size_t i = 0; i + 2 < n.size(); i += 3) p.normals.emplace_back(n[i], n[i + 1], n[i + 2]);
              }
@@ -359,9 +366,15 @@ By default one style, DEFAULTS['preset'] with the default sigma and mu, applies 
            "(#F,) ints: style index per face, -1 = unstyled (pure ARAP). No re-factorization.")
       .def("set_pins", &Solver::set_pins, py::arg("pinned"), py::arg("positions") = py::none(),
            "Sets the pinned vertices and their targets (re-factors).")
+      .def("set_pin_positions", &Solver::set_pin_positions, py::arg("positions"),
+           "(#P, 3) new targets for the current pins, in the order of `pinned`. No re-factorization; the pins\n"
+           "sit at their targets at once, the rest of the mesh follows at the next step.")
+      .def_property_readonly("pinned", &Solver::pinned, "(#P,) int64 copy of the pinned vertex indices.")
+      .def_property_readonly("pin_positions", &Solver::pin_positions, "(#P, 3) float64 copy of the pins' targets.")
       .def_property("lam", [](Solver& s) { return s.core().lambda(); },
                     [](Solver& s, double l) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_lambda(l); },
-                    "lambda (>= 0): how strongly edges follow the preferred normals.")
+                    "lambda: how strongly edges follow the preferred normals (range: LIMITS['lam']).\n"
+                    "Setting it does not re-factor.")
       .def_property("admm_iterations", [](Solver& s) { return s.core().admm_iterations(); },
                     [](Solver& s, int n) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_admm_iterations(n); },
                     "ADMM rounds per step (range: LIMITS['admm_iterations']).")

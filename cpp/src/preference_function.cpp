@@ -39,6 +39,17 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p) : sigma_(p.sigma), 
     throw std::invalid_argument("rotation must be a 3x3 rotation matrix (orthonormal, determinant +1)");
   if (p.normals.empty() && p.ring_offsets.empty())
     throw std::invalid_argument("a style needs at least one preferred normal or one ring");
+  if (p.normals.size() > static_cast<size_t>(settings::max_style_normals)) {
+    std::ostringstream msg;
+    msg << "a style takes at most " << settings::max_style_normals << " preferred normals (got " << p.normals.size()
+        << "); merge near-parallel ones first (gauss_core.merge_directions)";
+    throw std::invalid_argument(msg.str());
+  }
+  if (p.ring_offsets.size() > static_cast<size_t>(settings::max_style_rings)) {
+    std::ostringstream msg;
+    msg << "a style takes at most " << settings::max_style_rings << " rings (got " << p.ring_offsets.size() << ")";
+    throw std::invalid_argument(msg.str());
+  }
 
   for (const Eigen::Vector3d& n : p.normals) {
     const double len = n.norm();
@@ -59,7 +70,9 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p) : sigma_(p.sigma), 
                                               : Eigen::Vector3d::UnitZ());
 
   const int K = static_cast<int>(normals_.size());
-  if (K > 0) {
+  if (K > kExactNormals) {
+    field_ = std::make_shared<const NormalField>(normals_, sigma_, has_rings() ? p.axis_contribution : 1.0);
+  } else if (K > 0) {
     Eigen::MatrixXd A(K, K);
     for (int i = 0; i < K; ++i)
       for (int j = 0; j < K; ++j) A(i, j) = std::exp(sigma_ * (normals_[i].dot(normals_[j]) - 1.0));
@@ -149,6 +162,20 @@ void PreferenceFunction::evaluate(const Eigen::Vector3d& x, double& g, Eigen::Ve
       h12 += c * t[k][7];
       h22 += c * t[k][8];
     }
+  }
+  if (field_) {
+    double sums[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+    field_->accumulate(x, sums);
+    v += sums[0];
+    g0 += sums[1];
+    g1 += sums[2];
+    g2 += sums[3];
+    h00 += sums[4];
+    h01 += sums[5];
+    h02 += sums[6];
+    h11 += sums[7];
+    h12 += sums[8];
+    h22 += sums[9];
   }
   g = v;
   grad = Eigen::Vector3d(g0, g1, g2) * s;

@@ -58,44 +58,54 @@ StyleParams make_rings(std::vector<double> offsets) {
   return p;
 }
 
+double golden_ratio() { return (1.0 + std::sqrt(5.0)) / 2.0; }
+
+struct Preset {
+  const char* name;
+  StyleParams (*build)();
+};
+
+// The registry (see presets.h): append only, never reorder or rename.
+const Preset kPresets[] = {
+    {"cube", [] { return make(all_signs({Vector3d(1, 0, 0), Vector3d(0, 1, 0), Vector3d(0, 0, 1)})); }},
+    // Flat base facing down, the other three faces leaning outwards (cos = 1/3 with the base).
+    {"tetrahedron", [] { return make(with_caps(ring_of_normals(3, std::asin(1.0 / 3.0), kPi / 2), false, true)); }},
+    {"octahedron", [] { return make(all_signs({Vector3d(1, 1, 1)})); }},
+    // Face normals = icosahedron vertices.
+    {"dodecahedron", [] { return make(all_signs(cyclic(Vector3d(0, 1, golden_ratio())))); }},
+    // Face normals = dodecahedron vertices.
+    {"icosahedron",
+     [] {
+       std::vector<Vector3d> base = cyclic(Vector3d(0, 1.0 / golden_ratio(), golden_ratio()));
+       base.emplace_back(1, 1, 1);
+       return make(all_signs(base));
+     }},
+    {"square_pyramid", [] { return make(with_caps(ring_of_normals(4, kPi / 4), false, true)); }},
+    {"truncated_pyramid", [] { return make(with_caps(ring_of_normals(4, kPi / 4), true, true)); }},
+    {"triangular_prism", [] { return make(with_caps(ring_of_normals(3, 0.0, kPi / 2), true, true)); }},
+    {"hexagonal_prism", [] { return make(with_caps(ring_of_normals(6, 0.0), true, true)); }},
+    {"plane", [] { return make({Vector3d(0, 0, 1), Vector3d(0, 0, -1)}); }},
+    {"cylinder", [] { return make_rings({0.0}); }},
+    {"cone", [] { return make_rings({0.5}); }},  // surface normals 30 degrees above the equator
+    {"double_cone", [] { return make_rings({0.5, -0.5}); }},
+};
+
 }  // namespace
 
 const std::vector<std::string>& preset_names() {
-  static const std::vector<std::string> names = {
-      "cube",           "tetrahedron",      "octahedron",       "dodecahedron",
-      "icosahedron",    "square_pyramid",   "truncated_pyramid", "triangular_prism",
-      "hexagonal_prism", "plane",           "cylinder",         "cone",
-      "double_cone"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const Preset& p : kPresets) out.emplace_back(p.name);
+    return out;
+  }();
   return names;
 }
 
 StyleParams preset_style(const std::string& name) {
-  const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
-  if (name == "cube") return make(all_signs({Vector3d(1, 0, 0), Vector3d(0, 1, 0), Vector3d(0, 0, 1)}));
-  if (name == "tetrahedron") {
-    // Flat base facing down, the other three faces leaning outwards (cos = 1/3 with the base).
-    return make(with_caps(ring_of_normals(3, std::asin(1.0 / 3.0), kPi / 2), false, true));
-  }
-  if (name == "octahedron") return make(all_signs({Vector3d(1, 1, 1)}));
-  if (name == "dodecahedron") {  // face normals = icosahedron vertices
-    std::vector<Vector3d> base = cyclic(Vector3d(0, 1, phi));
-    return make(all_signs(base));
-  }
-  if (name == "icosahedron") {  // face normals = dodecahedron vertices
-    std::vector<Vector3d> base = cyclic(Vector3d(0, 1.0 / phi, phi));
-    base.emplace_back(1, 1, 1);
-    return make(all_signs(base));
-  }
-  if (name == "square_pyramid") return make(with_caps(ring_of_normals(4, kPi / 4), false, true));
-  if (name == "truncated_pyramid") return make(with_caps(ring_of_normals(4, kPi / 4), true, true));
-  if (name == "triangular_prism") return make(with_caps(ring_of_normals(3, 0.0, kPi / 2), true, true));
-  if (name == "hexagonal_prism") return make(with_caps(ring_of_normals(6, 0.0), true, true));
-  if (name == "plane") return make({Vector3d(0, 0, 1), Vector3d(0, 0, -1)});
-  if (name == "cylinder") return make_rings({0.0});
-  if (name == "cone") return make_rings({0.5});          // surface normals 30 degrees above the equator
-  if (name == "double_cone") return make_rings({0.5, -0.5});
+  for (const Preset& p : kPresets)
+    if (name == p.name) return p.build();
   std::string valid;
-  for (const std::string& n : preset_names()) valid += (valid.empty() ? "" : ", ") + n;
+  for (const Preset& p : kPresets) valid += (valid.empty() ? "" : ", ") + std::string(p.name);
   throw std::invalid_argument("unknown style preset '" + name + "'; valid presets: " + valid);
 }
 

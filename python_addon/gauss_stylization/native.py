@@ -26,6 +26,47 @@ FACTS_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "core_fact
 # presets:  preset names; the position of each is its enum number in saved .blend files.
 Facts = namedtuple("Facts", "defaults limits presets")
 
+def load_failure_message(exc):
+    """What the artist reads when ``gauss_core`` cannot be imported: why, and which build fixes it.
+
+    A module only loads in the Python version it was built for (its file name says which:
+    gauss_core.cpython-311-x86_64-linux-gnu.so is for 3.11) and on a glibc at least as new as the
+    one it needs, so the message names the Python, numpy and glibc this Blender runs and the
+    modules the add-on folder holds (README: "Which Blender can load this build").
+    """
+    import glob
+    import os
+    import platform
+    import re
+    try:
+        import numpy
+        numpy_version = numpy.__version__
+    except ImportError:
+        numpy_version = "none importable"
+    libc, libc_version = platform.libc_ver()
+    python = "%d.%d" % sys.version_info[:2]
+    folder = os.path.dirname(os.path.abspath(__file__))
+    found = {}  # file name -> the Python it was built for
+    for path in sorted(glob.glob(os.path.join(folder, "gauss_core*"))):
+        built_for = re.search(r"\.cpython-(\d)(\d+)-", os.path.basename(path))
+        found[os.path.basename(path)] = "%s.%s" % built_for.groups() if built_for else "unknown"
+    if python in found.values():
+        problem = "the module for Python %s is there but does not load on this system" % python
+        fix = ("build the module on this machine (a GLIBC version in the import error means this "
+               "system's glibc is older than the module needs)")
+    else:
+        problem = ("this add-on only holds " + ", ".join(
+            "a module for Python %s (%s)" % (v, name) for name, v in found.items())
+            if found else "this add-on holds no gauss_core module at all")
+        fix = ("install the add-on zip built for Python %s (its name ends in -cp%d%d-linux_x86_64.zip) "
+               "or build one against a Python %s" % (python, sys.version_info[0], sys.version_info[1], python))
+    return ("The Gauss solver (gauss_core native module) cannot load: Blender runs Python %s with "
+            "numpy %s on %s %s, and %s. Fix: %s; see the README, \"Which Blender can load this "
+            "build\". (%s: %s)" % (platform.python_version(), numpy_version, libc or "a C library",
+                                    libc_version or "of unknown version", problem, fix,
+                                    type(exc).__name__, exc))
+
+
 _core = None
 _facts = None
 
@@ -37,11 +78,7 @@ def core():
         try:
             from . import gauss_core as module
         except ImportError as exc:
-            version = "%d.%d" % sys.version_info[:2]
-            raise NativeModuleError(
-                "The Gauss solver (gauss_core native module) is missing or was built for "
-                "another Python (Blender runs Python %s; the module must be built for it): %s"
-                % (version, exc)) from exc
+            raise NativeModuleError(load_failure_message(exc)) from exc
         _core = module
     return _core
 

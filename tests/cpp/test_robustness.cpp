@@ -26,6 +26,7 @@
 #include "gauss/mesh_io.h"
 #include "gauss/preference_function.h"
 #include "gauss/presets.h"
+#include "test_expect.h"
 
 namespace {
 
@@ -223,15 +224,7 @@ double max_rel_diff(const std::vector<double>& a, const std::vector<double>& b, 
   return d / size;
 }
 
-template <typename F>
-void expect_refused(F&& f, const std::string& words) {
-  try {
-    f();
-    ADD_FAILURE() << "accepted; expected std::invalid_argument mentioning '" << words << "'";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << "message: " << e.what();
-  }
-}
+using gauss_test::expect_refused;
 
 // ---------------------------------------------------------------------------------------------------
 // Broken meshes.

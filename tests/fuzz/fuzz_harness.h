@@ -2,18 +2,20 @@
 // The fuzz target's body: one input = one session with GaussSolver through its public entry points
 // (mesh arrays with arbitrary indices and coordinates, pins and their targets, styles from presets or
 // from arbitrary normals/rings/sigma/mu/rotation, face styles, lambda, ADMM iterations, steps, reset,
-// read-outs). Shared by the libFuzzer target (fuzz_solver.cpp) and by the replay of the corpus and of
+// read-outs, moving the pins). Shared by the libFuzzer target (fuzz_solver.cpp) and by the replay of the corpus and of
 // the regressions in tests/cpp/test_robustness.cpp, so every input the fuzzer ever crashed on stays
 // covered by ctest under any compiler.
 //
 // Besides what the sanitizers check, a violation of this contract calls abort():
 //  * bad input is refused with std::invalid_argument (any other exception escapes: a crash);
-//  * a solver that was built steps and reads out finite coordinates and energies;
+//  * a solver that was built steps and reads out finite coordinates and energies, and the coordinates
+//    stay bounded: within kGrowth times the extent of the rest mesh and the pin targets of their
+//    centre, however many steps ran (slivers once made meshes explode, finite but 1e80 wide);
 //  * nothing is lost: vertices that no usable face references come back bit for bit as given, and
 //    pinned vertices exactly at their targets.
 //
 // Input layout (bytes consumed front to back; missing bytes read as 0): mesh, pins, lambda, then up
-// to 16 operations. tests/fuzz/make_corpus.py writes seeds in this layout.
+// to 16 operations, then new pin targets. tests/fuzz/make_corpus.py writes seeds in this layout.
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -127,9 +129,46 @@ struct Mesh {
   void face(int64_t a, int64_t b, int64_t c) { F.insert(F.end(), {a, b, c}); }
 };
 
+// A prism with n-gon caps whose sides are split by `cuts` vertices, collinear up to an alternating
+// offset of 2^-21 (float rounding of Blender's coordinates, made deterministic: pure rounding noise
+// decided by the last bit whether an old area test caught a triangle). Each cap is triangulated as Blender's loop triangles of such an n-gon
+// are: by clipping every other corner, (p0 p1 p2), (p2 p3 p4), ..., then the same on what remains, so
+// three consecutive points of one side make a zero-area triangle (at rounding level, |cot| ~ 1e7)
+// next to good ones.
+inline void add_ngon_prism(Mesh& m, int sides, int cuts, double height) {
+  const int ring = sides * (cuts + 1);
+  for (int level = 0; level < 2; ++level)
+    for (int i = 0; i < sides; ++i)
+      for (int c = 0; c <= cuts; ++c) {
+        const double a0 = 2 * kPi * i / sides, a1 = 2 * kPi * (i + 1) / sides, t = c / double(cuts + 1);
+        const double r = 1.0 + ((c % 2) ? 1.0 : -1.0) * std::ldexp(1.0, -21) * (c > 0);
+        m.vertex(r * ((1 - t) * std::cos(a0) + t * std::cos(a1)), r * ((1 - t) * std::sin(a0) + t * std::sin(a1)),
+                 level * height);
+      }
+  for (int i = 0; i < ring; ++i) {
+    const int j = (i + 1) % ring;
+    m.face(i, j, ring + j);
+    m.face(i, ring + j, ring + i);
+  }
+  std::vector<int> polygon(ring);
+  for (int i = 0; i < ring; ++i) polygon[i] = i;
+  while (polygon.size() >= 3) {
+    const int n = static_cast<int>(polygon.size());
+    std::vector<int> rest;
+    for (int k = 0; k + 1 < n; k += 2) {
+      const int a = polygon[k], b = polygon[k + 1], c = polygon[(k + 2) % n];
+      m.face(a, c, b);                        // bottom, facing down
+      m.face(ring + a, ring + b, ring + c);   // top, facing up
+      rest.push_back(a);
+    }
+    if (n % 2 == 1) rest.push_back(polygon[n - 1]);
+    polygon = std::move(rest);
+  }
+}
+
 inline Mesh make_mesh(Reader& r) {
   Mesh m;
-  switch (r.byte() % 6) {
+  switch (r.byte() % 7) {
     case 0: {  // arbitrary arrays
       const int nv = r.byte() % 48;
       for (int i = 0; i < 3 * nv; ++i) m.V.push_back(r.real());
@@ -186,6 +225,11 @@ inline Mesh make_mesh(Reader& r) {
         m.face(4 * i, 4 * i + 3, 4 * i + 2);
         m.face(4 * i + 1, 4 * i + 2, 4 * i + 3);
       }
+      break;
+    }
+    case 6: {  // n-gon prism: slivers and collinear fans
+      const int sides = 3 + r.byte() % 14, cuts = r.byte() % 9;
+      add_ngon_prism(m, sides, cuts, 0.25 + (r.byte() % 8) / 4.0);
       break;
     }
     default: {  // k triangles on one edge: a non-manifold fan
@@ -305,6 +349,29 @@ inline std::optional<gauss::PreferenceFunction> make_style(Reader& r) {
   }
 }
 
+// How far results may spread, in extents of the rest mesh and pin targets, from their centre.
+constexpr double kGrowth = 10.0;
+
+// Moves the current pins (set_pin_positions, no re-factorization): near their targets or anywhere, or
+// with a wrong count. It runs after the operations, so inputs saved before it still replay the sessions
+// they were saved for.
+inline void drag_pins(Reader& r, gauss::GaussSolver& s, const Mesh& m, Pins& pins) {
+  Pins moved = pins;
+  if (moved.target.empty())
+    for (int64_t v : moved.index) moved.target.insert(moved.target.end(), &m.V[3 * v], &m.V[3 * v] + 3);
+  const uint8_t mode = r.byte();
+  for (double& x : moved.target) x = mode % 2 ? r.real() : x + r.real() / 8.0;
+  const int count = static_cast<int>(moved.index.size()) - (mode >= 224 ? 1 : 0);
+  GAUSS_FUZZ_TRACE("  set_pin_positions (%d of %zu)\n", count, moved.index.size());
+  try {
+    s.set_pin_positions(moved.target.empty() ? nullptr : moved.target.data(), count);
+    if (count != static_cast<int>(moved.index.size())) fail("a wrong number of pin positions was accepted");
+    pins = std::move(moved);
+  } catch (const std::invalid_argument& e) {
+    GAUSS_FUZZ_TRACE("    refused: %s\n", e.what());
+  }
+}
+
 // The read-outs, checked against the contract above.
 inline void check(const gauss::GaussSolver& s, const Mesh& m, const std::vector<uint8_t>& referenced,
                   const Pins& pins) {
@@ -317,6 +384,22 @@ inline void check(const gauss::GaussSolver& s, const Mesh& m, const std::vector<
     if (!std::isfinite(out[i])) fail("a vertex coordinate is NaN or infinite");
     if (!(out_f[i] == static_cast<float>(out[i]))) fail("float and double read-outs differ");
   }
+  // Bounded: the box of the referenced rest vertices and the pin targets, grown kGrowth times.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+  for (int v = 0; v < nv; ++v)
+    if (referenced[v])
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], m.V[3 * v + k]), hi[k] = std::max(hi[k], m.V[3 * v + k]);
+  for (size_t i = 0; i < pins.index.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double t = pins.target.empty() ? m.V[3 * pins.index[i] + k] : pins.target[3 * i + k];
+      lo[k] = std::min(lo[k], t), hi[k] = std::max(hi[k], t);
+    }
+  const Eigen::Vector3d centre = 0.5 * lo + 0.5 * hi;  // halves first: no overflow near DBL_MAX
+  const double extent = (0.5 * hi - 0.5 * lo).maxCoeff() * 2.0;
+  for (int v = 0; v < nv; ++v)
+    if (referenced[v])
+      for (int k = 0; k < 3; ++k)
+        if (!(std::abs(out[3 * v + k] - centre[k]) <= kGrowth * extent + 1e-300)) fail("the mesh blew up");
   std::vector<uint8_t> pinned(nv, 0);
   for (size_t i = 0; i < pins.index.size(); ++i) {
     const int64_t v = pins.index[i];
@@ -358,7 +441,7 @@ inline void run_one(const uint8_t* data, size_t size) {
   if (s->num_vertices() != m.nv() || s->num_input_faces() != m.nf()) fail("the solver lost vertices or faces");
 
   // Work budget: dozens of 1000-round steps take seconds under the sanitizers and teach nothing new.
-  long rounds_left = 4000;
+  long rounds_left = 4000;  // a 1000-step run fits, with room for the other operations
   auto step = [&] {
     if (rounds_left < s->admm_iterations()) return;
     rounds_left -= s->admm_iterations();
@@ -366,9 +449,9 @@ inline void run_one(const uint8_t* data, size_t size) {
   };
   const int ops = 1 + r.byte() % 16;
   for (int op = 0; op < ops && !r.empty(); ++op) {
-    const int code = r.byte() % 9;
-    static const char* const names[9] = {"set_styles", "set_style", "set_face_styles", "set_lambda", "set_pins",
-                                         "set_admm_iterations", "step", "reset", "check"};
+    const int code = r.byte() % 10;
+    static const char* const names[10] = {"set_styles", "set_style", "set_face_styles", "set_lambda", "set_pins",
+                                          "set_admm_iterations", "step", "reset", "check", "long_run"};
     GAUSS_FUZZ_TRACE("  %s\n", names[code]);
     try {
       switch (code) {
@@ -419,15 +502,24 @@ inline void run_one(const uint8_t* data, size_t size) {
           s->reset();
           if (s->step_count() != 0) fail("reset did not reset the step count");
           break;
-        default:
+        case 8:
           check(*s, m, referenced, pins);
           break;
+        default: {  // a live run left going: up to 1000 steps, then the read-outs
+          const int n = 100 * (1 + r.byte() % 10);
+          for (int i = 0; i < n; ++i) step();
+          check(*s, m, referenced, pins);
+          break;
+        }
       }
     } catch (const std::invalid_argument& e) {
       // Refused with a message: fine, and the solver must still work (checked below).
       GAUSS_FUZZ_TRACE("    refused: %s\n", e.what());
     }
   }
+  step();
+  check(*s, m, referenced, pins);
+  drag_pins(r, *s, m, pins);
   step();
   check(*s, m, referenced, pins);
   GAUSS_FUZZ_TRACE("  done: %d steps since reset, %d styles, E_g %g\n", s->step_count(), s->num_styles(), s->g_energy());

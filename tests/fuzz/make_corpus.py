@@ -11,9 +11,9 @@ import struct
 HERE = pathlib.Path(__file__).resolve().parent
 
 # make_mesh shapes, scales (index into the harness table), operations.
-ARBITRARY, OCTAHEDRON, CUBE, GRID, TETRAHEDRA, FAN = range(6)
+ARBITRARY, OCTAHEDRON, CUBE, GRID, TETRAHEDRA, FAN, NGON_PRISM = range(7)
 SCALE = {1.0: 0, 1e6: 1, 1e-6: 2, 1e150: 3, 1e-150: 4, 1e300: 5, 1e-300: 6, 3.0: 7}
-SET_STYLES, SET_STYLE, FACE_STYLES, LAMBDA, PINS, ADMM, STEPS, RESET, CHECK = range(9)
+SET_STYLES, SET_STYLE, FACE_STYLES, LAMBDA, PINS, ADMM, STEPS, RESET, CHECK, LONG_RUN = range(10)
 PRESETS = ["cube", "tetrahedron", "octahedron", "dodecahedron", "icosahedron", "square_pyramid",
            "truncated_pyramid", "triangular_prism", "hexagonal_prism", "plane", "cylinder", "cone",
            "double_cone"]
@@ -161,6 +161,10 @@ class Seed:
     def admm(self, n):
         return self.byte(ADMM).byte(ADMM_COUNTS.index(n))
 
+    def long_run(self, n):
+        """n = 100, 200, ..., 1000 steps, then the read-outs are checked."""
+        return self.byte(LONG_RUN).byte(n // 100 - 1)
+
 
 def seeds():
     out = {}
@@ -212,6 +216,23 @@ def seeds():
     out["extreme_params"] = (Seed().mesh(GRID, 4, 3, 1).pins().lam(8192.0).ops(4)
                              .set_styles(lambda s: s.style("double_cone", sigma=8192.0, mu=8192.0))
                              .admm(20).steps(2).byte(CHECK))
+    # Blender's 16-sided cylinder with 8 cuts: 144-gon caps fanned from a corner (zero-area and long thin
+    # triangles, float coordinates); a live run left going for 1000 steps at lambda 1, 4 and 20.
+    # NGON_PRISM bytes: 3 + a % 14 sides, b % 9 cuts, height 0.25 + c % 8 / 4.
+    for lam in (1.0, 4.0, 20.0):
+        out[f"ngon_cylinder_lambda{lam:g}_long_run"] = (Seed().mesh(NGON_PRISM, 13, 8, 7).pins().lam(lam)
+                                                         .ops(1).long_run(1000))
+    out["ngon_prism_4_cuts_pinned"] = (Seed().mesh(NGON_PRISM, 9, 4, 3).pins([0, 60], 1, [(0, 0, 1), (1, 0, 0)])
+                                       .lam().ops(3).steps(4).byte(CHECK).long_run(300))
+    # Slivers next to good triangles: a square's diagonal split at a point 2^-20 off it, so one triangle
+    # has an angle of ~180 degrees between good ones; a tent on top closes it. Then a long run.
+    eps = 2.0 ** -20
+    bottom = [(0, 1, 6), (6, 1, 7), (7, 1, 2), (0, 6, 3), (6, 4, 3), (4, 7, 3), (7, 2, 3), (6, 7, 4)]
+    out["slivers_next_to_good_triangles"] = (
+        Seed().arbitrary([(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0.5, 0.5 + eps, 0), (0.5, 0.5, 1),
+                          (0.25, 0.25, 0), (0.75, 0.75, 0)],
+                         [(a, c, b) for a, b, c in bottom] + [(0, 1, 5), (1, 2, 5), (2, 3, 5), (3, 0, 5)])
+        .pins().lam(20.0).ops(1).long_run(1000))
     out["empty"] = Seed()
     return out
 

@@ -22,6 +22,10 @@
 namespace gauss {
 namespace parallel {
 
+// The solver's loops pass this as min_parallel: below it forking costs more than it saves, and on a
+// loaded machine (Blender's own threads) spinning workers can cost far more.
+inline constexpr int kMinParallelItems = 4096;
+
 // Threads loops use by default: GAUSS_THREADS or OMP_NUM_THREADS from the environment if set,
 // otherwise the number of hardware threads.
 int max_threads();

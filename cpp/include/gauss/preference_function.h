@@ -8,8 +8,10 @@
 // so no term exceeds its weight and g, grad g, Hess g stay finite for any sigma > 0.
 #include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <vector>
 
+#include "gauss/normal_field.h"
 #include "gauss/settings.h"
 
 namespace gauss {
@@ -29,10 +31,17 @@ struct StyleParams {
 
 // g with its weights solved so that g(n_k) = 1 at every discrete normal (Eq. 10) and g = 1 on every
 // ring (the ring weights solved among themselves, as for the double cone in the paper).
+//
+// Up to kExactNormals discrete normals (every preset, small custom sets) the weights are solved
+// exactly and every term is summed. More normals (up to settings::max_style_normals) go through a
+// NormalField: near-parallel normals merged, weights solved sparsely, only the terms near x summed,
+// within the tolerances normal_field.h states.
 class PreferenceFunction {
  public:
   // Throws std::invalid_argument with a readable message on nonsense parameters.
   explicit PreferenceFunction(const StyleParams& params);
+
+  static constexpr int kExactNormals = 64;
 
   double value(const Eigen::Vector3d& x) const;
   // Value, gradient (Eq. 11, 14) and Hessian (Eq. 12, 15) of g at x in one pass.
@@ -45,6 +54,8 @@ class PreferenceFunction {
   const Eigen::Vector3d& axis() const { return axis_; }                      // rotated
   const std::vector<double>& ring_offsets() const { return offsets_; }
   bool has_rings() const { return !offsets_.empty(); }
+  // The many-normals representation, or nullptr when the normals are summed exactly.
+  const NormalField* field() const { return field_.get(); }
 
  private:
   std::vector<Eigen::Vector3d> normals_;
@@ -53,6 +64,7 @@ class PreferenceFunction {
   std::vector<std::array<double, 10>> terms_;
   std::vector<char> second_of_pair_;  // per term: the antipode of the term before it
   double exp_minus_2sigma_ = 0;
+  std::shared_ptr<const NormalField> field_;  // shared: styles are copied into every solver
   Eigen::Vector3d axis_;
   std::vector<double> offsets_;
   std::vector<double> ring_weights_;    // w'_r

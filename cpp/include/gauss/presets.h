@@ -1,19 +1,28 @@
 #pragma once
 // Named styles: the Gauss images of simple solids, in a Z-up frame (Blender's). Each preset is a
-// StyleParams with default sigma = 4, mu = 1 and axis contribution 0.5; callers override those.
+// StyleParams with the default sigma, mu and axis contribution (settings.h); callers override those.
+//
+// The preset table in presets.cpp is the one list of presets: preset_names(), gauss_core.PRESETS,
+// the add-on's core_facts.json and the add-on's style enum all derive from it. Its order IS the
+// registry of the enum numbers that saved .blend files store: append new presets at the end, never
+// reorder, rename or remove one (a saved file would open with another style).
 #include <string>
 #include <vector>
 
 #include "gauss/preference_function.h"
+#include "gauss/settings.h"
 
 namespace gauss {
 
-// Preset names in UI order: cube, tetrahedron, octahedron, dodecahedron, icosahedron,
-// square_pyramid, truncated_pyramid, triangular_prism, hexagonal_prism, plane, cylinder, cone,
-// double_cone.
+// Preset names in table order (= UI order, = the saved enum numbers).
 const std::vector<std::string>& preset_names();
 
-// Throws std::invalid_argument for an unknown name (the message lists the valid ones).
+// The named preset's normals/rings. Throws std::invalid_argument for an unknown name (the message
+// lists the valid ones).
 StyleParams preset_style(const std::string& name);
+
+// The style every face has until told otherwise (GaussSolver, gauss_core.Solver): the preset
+// settings::default_preset with the default sigma, mu and axis contribution.
+inline StyleParams default_style() { return preset_style(settings::default_preset); }
 
 }  // namespace gauss

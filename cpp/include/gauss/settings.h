@@ -49,8 +49,22 @@ inline constexpr Setting admm_iterations{"admm_iterations", "ADMM iterations", 1
 
 inline constexpr const Setting* all[] = {&lambda, &sigma, &mu, &axis_contribution, &admm_iterations};
 
+// Sizes. A style's preferred normals: set-up is O(K log K) up to this many (normal_field.h); bigger
+// sets are refused with a message that points to gauss_core.merge_directions. Rings: their weights
+// are solved densely (R by R).
+inline constexpr int max_style_normals = 100000;
+inline constexpr int max_style_rings = 256;
+
 // The style every face has until set_styles() says otherwise, and the add-on's default slot preset.
 inline constexpr const char* default_preset = "cube";
+
+// Limits on the input rather than settings (no default): beyond them the arithmetic would overflow.
+// Coordinates of vertices that faces use: within +-max_coordinate (near 1e308 the output
+// x * scale + center overflowed to infinity).
+inline constexpr double max_coordinate = 1e200;
+// Pin targets: within max_pin_distance times the mesh's size of its centre (beyond ~1e150 sizes,
+// squared edge lengths overflow and E_ARAP turns infinite).
+inline constexpr double max_pin_distance = 1e12;
 
 }  // namespace settings
 }  // namespace gauss

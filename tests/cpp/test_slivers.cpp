@@ -1,0 +1,181 @@
+// Slivers (issue 14, item 3): meshes with angles near 0 or 180 degrees (n-gon caps with collinear
+// sides fanned into zero-area and long thin triangles, filled holes, near-collinear points next to good
+// triangles) stylize to bounded results however long the run, and well-shaped meshes keep their exact
+// cotangent weights (so their results are unchanged).
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "../fuzz/fuzz_harness.h"
+#include "gauss/alignment_share.h"
+#include "gauss/cotangent_weights.h"
+#include "gauss/gauss_solver.h"
+#include "gauss/mesh_io.h"
+#include "gauss/presets.h"
+#include "test_meshes.h"
+
+namespace {
+
+using Eigen::Vector3d;
+using Mesh = gauss::TriangleMesh;
+constexpr double kPi = 3.14159265358979323846;
+
+// Results must stay within this many bounding-box sizes of the box's centre (the fuzz harness
+// allows 10 for arbitrary inputs; these meshes have no pins and shrink rather than grow).
+constexpr double kGrowth = 2.0;
+
+Mesh ngon_cylinder(int sides, int cuts) {
+  gauss_fuzz::Mesh m;
+  gauss_fuzz::add_ngon_prism(m, sides, cuts, 2.0);
+  return Mesh{m.V, m.F};
+}
+
+// An icosphere with the cap around +z cut off and the hole filled by a fan from one rim vertex: long
+// thin triangles, as a hole filler makes them.
+Mesh hole_filled_by_fan() {
+  const Mesh s = gauss_test::icosphere(3);
+  Mesh m{s.V, {}};
+  auto z = [&](int64_t v) { return s.V[3 * v + 2]; };
+  for (int f = 0; f < s.num_faces(); ++f)
+    if (z(s.F[3 * f]) < 0.8 || z(s.F[3 * f + 1]) < 0.8 || z(s.F[3 * f + 2]) < 0.8)
+      m.F.insert(m.F.end(), {s.F[3 * f], s.F[3 * f + 1], s.F[3 * f + 2]});
+  // The rim: vertices with z >= 0.8 of the remaining faces, ordered by angle around z.
+  std::vector<int64_t> rim;
+  std::vector<uint8_t> seen(s.num_vertices(), 0);
+  for (int64_t v : m.F)
+    if (z(v) >= 0.8 && !seen[v]++) rim.push_back(v);
+  auto angle = [&](int64_t v) { return std::atan2(s.V[3 * v + 1], s.V[3 * v]); };
+  std::sort(rim.begin(), rim.end(), [&](int64_t a, int64_t b) { return angle(a) < angle(b); });
+  for (size_t i = 1; i + 1 < rim.size(); ++i) m.F.insert(m.F.end(), {rim[0], rim[i], rim[i + 1]});
+  return m;
+}
+
+// A grid of good triangles whose middle row of vertices sits 1e-7 off the straight line between its
+// neighbours, with that row's triangles split so that slivers of ~180 degrees sit between good ones.
+Mesh slivers_in_grid(int n) {
+  Mesh m;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) m.V.insert(m.V.end(), {double(i), double(j), 0.3 * std::sin(0.7 * i + 0.4 * j)});
+  auto id = [&](int i, int j) { return static_cast<int64_t>(i * (n + 1) + j); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      if (i == n / 2) {
+        // A point almost on the quad's diagonal: two good triangles and two slivers.
+        const int64_t c = m.num_vertices();
+        const Vector3d a(m.V[3 * id(i, j)], m.V[3 * id(i, j) + 1], m.V[3 * id(i, j) + 2]);
+        const Vector3d b(m.V[3 * id(i + 1, j + 1)], m.V[3 * id(i + 1, j + 1) + 1], m.V[3 * id(i + 1, j + 1) + 2]);
+        const Vector3d p = 0.5 * (a + b) + Vector3d(1e-7, -1e-7, 0);
+        m.V.insert(m.V.end(), {p.x(), p.y(), p.z()});
+        m.F.insert(m.F.end(), {id(i, j), id(i + 1, j), c, c, id(i + 1, j), id(i + 1, j + 1)});
+        m.F.insert(m.F.end(), {id(i, j), c, id(i, j + 1), c, id(i + 1, j + 1), id(i, j + 1)});
+      } else {
+        m.F.insert(m.F.end(), {id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+      }
+    }
+  return m;
+}
+
+struct Box {
+  Vector3d centre;
+  double size;
+};
+Box box(const std::vector<double>& V) {
+  Vector3d lo = Vector3d::Constant(INFINITY), hi = -lo;
+  for (size_t v = 0; v < V.size() / 3; ++v) {
+    const Vector3d p(V[3 * v], V[3 * v + 1], V[3 * v + 2]);
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return {0.5 * (lo + hi), (hi - lo).maxCoeff()};
+}
+
+// Runs `steps` steps and checks, at each checkpoint, that coordinates and energies are finite and the
+// mesh stays within kGrowth sizes of its rest box's centre. Returns the final vertices.
+std::vector<double> run_bounded(const Mesh& m, double lambda, int steps, const std::string& what) {
+  gauss::GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), {}, nullptr, lambda);
+  const Box rest = box(m.V);
+  std::vector<double> out(m.V.size());
+  for (int done = 0; done < steps;) {
+    const int next = std::min(steps, done == 0 ? 50 : 2 * done);
+    while (done < next) s.step(), ++done;
+    s.copy_vertices(out.data());
+    double worst = 0;
+    for (size_t v = 0; v < out.size() / 3; ++v)
+      for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(out[3 * v + k] - rest.centre[k]) / rest.size);
+    EXPECT_TRUE(std::isfinite(worst) && worst <= kGrowth)
+        << what << " lambda " << lambda << ": after " << done << " steps a vertex is " << worst
+        << " sizes from the centre";
+    EXPECT_TRUE(std::isfinite(s.arap_energy()) && std::isfinite(s.g_energy())) << what << " after " << done;
+    if (::testing::Test::HasFailure()) break;
+  }
+  return out;
+}
+
+TEST(Slivers, CotangentWeightsOfWellShapedTrianglesAreExact) {
+  const Vector3d e[3] = {{1, 0, 0}, {-0.3, 0.9, 0.1}, {-0.7, -0.9, -0.1}};
+  const gauss::TriangleWeights tw = gauss::cotangent_weights(e);
+  ASSERT_TRUE(tw.well_shaped);
+  const double twice_area = e[0].cross(e[1]).norm();
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(tw.w[k], 0.5 * (-e[(k + 2) % 3].dot(e[(k + 1) % 3]) / twice_area));
+}
+
+TEST(Slivers, CotangentWeightsOfSliversAreTheSmallPositiveOnes) {
+  for (double offset : {0.0, 1e-12, 1e-7, 1e-3}) {  // angle at the apex ~180 degrees
+    const Vector3d a(0, 0, 0), b(1, 0, 0), c(0.5, offset, 0);
+    const Vector3d e[3] = {b - a, c - b, a - c};
+    const gauss::TriangleWeights tw = gauss::cotangent_weights(e);
+    EXPECT_FALSE(tw.well_shaped) << offset;
+    for (double w : tw.w) EXPECT_EQ(w, gauss::kIllShapedWeight);
+  }
+  // Just inside the limit: kept.
+  const double angle = std::atan(1.0 / (0.99 * gauss::kMaxCotangent));  // cot = 0.99 * limit
+  const Vector3d e[3] = {{1, 0, 0}, {std::cos(angle) - 1, std::sin(angle), 0}, {-std::cos(angle), -std::sin(angle), 0}};
+  EXPECT_TRUE(gauss::cotangent_weights(e).well_shaped);
+}
+
+TEST(Slivers, SubdividedCylinderCapsStayBoundedFor1000Steps) {
+  for (int cuts : {4, 8})
+    for (double lambda : {1.0, 4.0, 20.0}) run_bounded(ngon_cylinder(16, cuts), lambda, 1000, "cylinder, cuts " + std::to_string(cuts));
+}
+
+TEST(Slivers, HoleFilledByAFanStaysBoundedFor1000Steps) {
+  for (double lambda : {1.0, 4.0, 20.0}) run_bounded(hole_filled_by_fan(), lambda, 1000, "hole filled by a fan");
+}
+
+TEST(Slivers, SliversNextToGoodTrianglesStayBoundedFor1000Steps) {
+  for (double lambda : {1.0, 4.0, 20.0}) run_bounded(slivers_in_grid(12), lambda, 1000, "slivers in a grid");
+}
+
+// The hole-filled bunny (smallest angle 0.002 degrees) stylized well for 100 steps, then fell apart.
+TEST(Slivers, WatertightBunnyKeepsItsStyleFor300Steps) {
+  const std::string path = gauss_test::shared_mesh("bunny/bunny_watertight_34834.obj");
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
+  const Mesh m = gauss::read_mesh(path);
+  const std::vector<double> out = run_bounded(m, 4.0, 300, "watertight bunny");
+  const gauss::PreferenceFunction cube(gauss::preset_style("cube"));
+  EXPECT_GE(gauss::alignment_share(out.data(), m.F.data(), m.num_faces(), cube.normals(), 10.0), 0.8);
+}
+
+// Meshes without slivers keep every cotangent weight, so the fix cannot change their results.
+TEST(Slivers, WellShapedSharedMeshesKeepTheirCotangentWeights) {
+  for (const char* rel : {"bunny/bun_zipper_35947.obj", "armadillo/armadillo_libigl_43243.obj",
+                          "small/spot_triangulated_2930.obj"}) {
+    const std::string path = gauss_test::shared_mesh(rel);
+    if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
+    const Mesh m = gauss::read_mesh(path);
+    int ill = 0;
+    for (int f = 0; f < m.num_faces(); ++f) {
+      Vector3d p[3];
+      for (int k = 0; k < 3; ++k) p[k] = Vector3d(&m.V[3 * m.F[3 * f + k]]);
+      const Vector3d e[3] = {p[1] - p[0], p[2] - p[1], p[0] - p[2]};
+      ill += !gauss::cotangent_weights(e).well_shaped;
+    }
+    EXPECT_EQ(ill, 0) << rel;
+  }
+}
+
+}  // namespace

@@ -1,0 +1,84 @@
+"""The settings table and preset registry as gauss_core exports them (DEFAULTS, LIMITS, PRESETS), as the
+build writes them for the add-on (core_facts.json), and as the solver enforces them."""
+import json
+import math
+
+import numpy as np
+import pytest
+
+import gauss_core
+from conftest import BUILD
+from meshes import icosphere
+
+SETTINGS = ("lam", "sigma", "mu", "axis_contribution", "admm_iterations")
+INTEGER = {"admm_iterations"}
+LABEL = {"lam": "lambda", "admm_iterations": "ADMM iterations"}  # how error messages call them
+V, F = icosphere(2)
+
+
+def test_defaults_and_limits_have_the_documented_keys_and_types():
+    assert set(gauss_core.DEFAULTS) == set(SETTINGS) | {"preset"}
+    assert set(gauss_core.LIMITS) == set(SETTINGS)
+    for name in SETTINGS:
+        lo, hi = gauss_core.LIMITS[name]
+        kind = int if name in INTEGER else float
+        assert type(gauss_core.DEFAULTS[name]) is kind and type(lo) is kind and type(hi) is kind, name
+        assert lo <= gauss_core.DEFAULTS[name] <= hi, name
+    assert gauss_core.DEFAULTS["preset"] in gauss_core.PRESETS
+
+
+def test_the_preset_registry_order_is_unchanged():
+    # Saved .blend files store the add-on's style enum by position in this tuple: append only.
+    assert gauss_core.PRESETS == (
+        "cube", "tetrahedron", "octahedron", "dodecahedron", "icosahedron", "square_pyramid",
+        "truncated_pyramid", "triangular_prism", "hexagonal_prism", "plane", "cylinder", "cone",
+        "double_cone")
+
+
+def test_core_facts_json_written_by_the_build_equals_the_exports():
+    facts = json.loads((BUILD / "addon" / "gauss_stylization" / "core_facts.json").read_text())
+    assert set(facts) == {"DEFAULTS", "LIMITS", "PRESETS"}
+    assert facts["DEFAULTS"] == gauss_core.DEFAULTS
+    for name, value in facts["DEFAULTS"].items():  # 4.0 stays a float, 1 an int
+        assert type(value) is type(gauss_core.DEFAULTS[name]), name
+    assert {k: tuple(v) for k, v in facts["LIMITS"].items()} == gauss_core.LIMITS
+    assert tuple(facts["PRESETS"]) == gauss_core.PRESETS
+
+
+def test_a_new_solver_and_keyword_defaults_use_the_defaults():
+    s = gauss_core.Solver(V, F)
+    assert s.lam == gauss_core.DEFAULTS["lam"]
+    assert s.admm_iterations == gauss_core.DEFAULTS["admm_iterations"]
+    (style,) = s.styles
+    assert style.name == gauss_core.DEFAULTS["preset"]
+    for made in (style, gauss_core.Style.preset("cone"), gauss_core.Style([[0, 0, 1]])):
+        assert made.sigma == gauss_core.DEFAULTS["sigma"] and made.mu == gauss_core.DEFAULTS["mu"]
+        assert made.axis_contribution == gauss_core.DEFAULTS["axis_contribution"]
+
+
+def _apply(name, value):
+    """Uses one setting where the module takes it, steps once, returns the vertices."""
+    if name in ("lam", "admm_iterations"):
+        s = gauss_core.Solver(V, F, **{name: value})
+        setattr(s, name, value)
+    else:
+        s = gauss_core.Solver(V, F)
+        s.set_styles([gauss_core.Style.preset("double_cone", **{name: value})])
+    s.step()
+    return s.vertices
+
+
+def _just_outside(name):
+    lo, hi = gauss_core.LIMITS[name]
+    if name in INTEGER:
+        return [lo - 1, hi + 1]
+    return [np.nextafter(lo, -math.inf), np.nextafter(hi, math.inf), math.nan]
+
+
+@pytest.mark.parametrize("name", SETTINGS)
+def test_every_limit_is_accepted_and_just_outside_is_refused(name):
+    for value in gauss_core.LIMITS[name]:
+        assert np.isfinite(_apply(name, value)).all(), (name, value)
+    for value in _just_outside(name):
+        with pytest.raises(ValueError, match=LABEL.get(name, name) + " must be"):
+            _apply(name, value)

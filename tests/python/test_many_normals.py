@@ -1,0 +1,72 @@
+"""Many custom normals (issue 14, item 2) through the module: merge_directions, a 100,000-normal style,
+the size limit refused before any copy."""
+import time
+
+import numpy as np
+import pytest
+
+import gauss_core
+
+
+def random_directions(n, seed=0):
+    x = np.random.default_rng(seed).normal(size=(n, 3))
+    return x / np.linalg.norm(x, axis=1)[:, None]
+
+
+def test_merge_directions_weights_and_order_independence():
+    D = random_directions(5000)
+    area = np.random.default_rng(1).uniform(0.5, 2.0, size=len(D))
+    dirs, weights = gauss_core.merge_directions(D, 10.0, weights=area)
+    assert dirs.shape == (len(weights), 3) and 0 < len(weights) < len(D)
+    assert np.isclose(weights.sum(), area.sum())
+    assert np.allclose(np.linalg.norm(dirs, axis=1), 1.0)
+    # every input lies within 2 * 10 degrees of its merged direction
+    assert (D @ dirs.T).max(axis=1).min() >= np.cos(np.radians(20)) - 1e-12
+    perm = np.random.default_rng(2).permutation(len(D))
+    dirs2, weights2 = gauss_core.merge_directions(D[perm], 10.0, weights=area[perm])
+    assert np.array_equal(dirs, dirs2) and np.array_equal(weights, weights2)
+    dirs3, _ = gauss_core.merge_directions(D * 3.0, 10.0, weights=area)  # lengths do not matter
+    assert dirs3.shape == dirs.shape and np.allclose(dirs3, dirs)
+    counts = gauss_core.merge_directions(np.array([[0, 0, 1], [0, 0, 2], [1, 0, 0]]), 1.0)[1]
+    assert sorted(counts) == [1.0, 2.0]
+
+
+@pytest.mark.parametrize("bad, words", [
+    (dict(normals=[[0, 0, 0]], max_angle_degrees=5), "non-zero"),
+    (dict(normals=[[0, 0, 1]], max_angle_degrees=91), "between 0 and 90"),
+    (dict(normals=[[0, 0, 1]], max_angle_degrees=5, weights=[-1]), ">= 0"),
+    (dict(normals=[[0, 0, 1]], max_angle_degrees=5, weights=[1, 2]), "one entry per normal"),
+    (dict(normals=[[np.nan, 0, 1]], max_angle_degrees=5), "NaN"),
+])
+def test_merge_directions_refuses_bad_input(bad, words):
+    with pytest.raises(ValueError, match=words):
+        gauss_core.merge_directions(**bad)
+
+
+def test_hundred_thousand_normals_set_up_and_stylize():
+    D = random_directions(100_000, seed=3)
+    t = time.perf_counter()
+    style = gauss_core.Style(D, sigma=4.0)
+    print(f"100,000 normals: set-up {time.perf_counter() - t:.3f} s")  # measured, not asserted
+    assert style.normals.shape == (100_000, 3)
+    assert np.abs(style.value(D) - 1.0).max() <= 1e-3
+    s = gauss_core.Solver(*_octahedron())
+    s.set_styles([style])
+    s.step(3)
+    assert np.isfinite(s.vertices).all()
+
+
+def test_too_many_normals_are_refused_before_any_copy():
+    limit = gauss_core.SIZE_LIMITS["normals"]
+    assert limit == 100_000
+    with pytest.raises(ValueError, match="merge_directions"):
+        gauss_core.Style(random_directions(limit + 1))
+    huge = np.broadcast_to(np.array([0.0, 0.0, 1.0]), (10**9, 3))  # 24 GB if it were copied
+    with pytest.raises(ValueError, match="at most"):
+        gauss_core.Style(huge)
+
+
+def _octahedron():
+    V = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float)
+    F = np.array([[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]])
+    return V, F
