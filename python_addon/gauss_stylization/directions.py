@@ -2,7 +2,8 @@
 
 What the mesh looks like on the sphere: its triangles' unit normals weighted by
 area (what the overlay draws and auto-orient fits), and its dominant directions
-(area-weighted clusters of those normals: a style taken from an example object).
+(area-weighted clusters of those normals, merged by gauss_core.merge_directions: a
+style taken from an example object).
 """
 
 import numpy as np
@@ -75,42 +76,6 @@ def binned(normals, weights, degrees):
     return mean / length[:, None], sums
 
 
-def merge_directions(gauss_core, normals, max_angle_degrees, weights):
-    """Area-weighted merging of near-parallel directions: (directions M by 3, weights M).
-
-    Seeds in order of decreasing weight take every remaining direction within
-    ``max_angle_degrees`` and become their weighted mean. gauss_core.merge_directions
-    does exactly this in C++; older modules without it get the same in numpy.
-    """
-    native = getattr(gauss_core, "merge_directions", None)
-    if native is not None:
-        return native(normals, max_angle_degrees, weights)
-    return _merge_directions_numpy(normals, max_angle_degrees, weights)
-
-
-def _merge_directions_numpy(normals, max_angle_degrees, weights):
-    normals = np.asarray(normals, np.float64)
-    normals = normals / np.linalg.norm(normals, axis=1)[:, None]
-    weights = np.asarray(weights, np.float64)
-    # Decreasing weight, ties by direction: independent of the input order.
-    order = np.lexsort((normals[:, 2], normals[:, 1], normals[:, 0], -weights))
-    normals, weights = normals[order], weights[order]
-    cos_limit = np.cos(np.radians(max_angle_degrees))
-    free = np.ones(len(normals), bool)
-    directions, sums = [], []
-    for seed in range(len(normals)):
-        if not free[seed]:
-            continue
-        members = free & (normals @ normals[seed] >= cos_limit)
-        members[seed] = True
-        free &= ~members
-        mean = weights[members] @ normals[members]
-        length = np.linalg.norm(mean)
-        directions.append(mean / length if length > 0 else normals[seed])
-        sums.append(weights[members].sum())
-    return np.array(directions).reshape(-1, 3), np.array(sums)
-
-
 def dominant_directions(gauss_core, normals, areas, max_directions, merge_degrees=MERGE_DEGREES,
                         min_share=MIN_SHARE):
     """The directions most of the surface faces: area-weighted clusters of its normals.
@@ -127,7 +92,7 @@ def dominant_directions(gauss_core, normals, areas, max_directions, merge_degree
     if not used.any() or not total > 0:
         return np.empty((0, 3)), np.empty(0)
     cells, cell_areas = binned(normals[used], areas[used], BIN_DEGREES)
-    directions, weights = merge_directions(gauss_core, cells, merge_degrees, cell_areas)
+    directions, weights = gauss_core.merge_directions(cells, merge_degrees, cell_areas)
     directions, shares = np.asarray(directions), np.asarray(weights) / total
     keep = np.argsort(-shares, kind="stable")
     keep = keep[shares[keep] >= min_share][:max_directions]

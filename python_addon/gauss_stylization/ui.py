@@ -85,9 +85,9 @@ class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
         buttons.separator()
         buttons.operator("object.gauss_style_move", icon='TRIA_UP', text="").direction = 'UP'
         buttons.operator("object.gauss_style_move", icon='TRIA_DOWN', text="").direction = 'DOWN'
-        row = layout.row(align=True)
-        row.operator("object.gauss_style_from_object", icon='OBJECT_DATA')
-        row.operator("object.gauss_style_auto_orient", icon='ORIENTATION_GIMBAL')
+        tools = layout.column(align=True)
+        tools.operator("object.gauss_style_from_object", icon='OBJECT_DATA')
+        tools.operator("object.gauss_style_auto_orient", icon='ORIENTATION_GIMBAL')
         if not settings.styles:
             layout.label(text="Stylize adds a %s style" % schema.DEFAULT_PRESET_LABEL, icon='INFO')
             return

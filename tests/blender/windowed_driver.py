@@ -16,6 +16,7 @@ import sys
 import tempfile
 import time
 import traceback
+import types
 
 import bpy
 import numpy as np
@@ -29,6 +30,7 @@ os.environ["GAUSS_BUILD_DIR"] = BUILD  # helpers load the add-on from there
 sys.path.insert(0, HERE)
 from helpers import coords, key_coords, mesh_coords  # noqa: E402  (the same measurements as headless)
 from scene_kit import activate, import_obj  # noqa: E402  (helpers put blender_scenes on sys.path)
+import windowed_interactive  # noqa: E402  (the interactive tools' scenarios, issue 9)
 # GAUSS_WINDOWED_MESH (relative to shared/meshes) runs the scenario on another mesh,
 # e.g. bunny/bun_zipper_35947.obj to see live tick times on 35K vertices.
 MESH = os.path.join(REPO, "..", "shared", "meshes",
@@ -510,6 +512,7 @@ def scenario():
     yield from object_removed_by_script_mid_run(keyed)
     yield from delete_key_mid_run(name)
     yield from viewport_closed_mid_run(name)
+    yield from windowed_interactive.scenario(types.SimpleNamespace(**globals()), name)
     yield from save_and_reopen_mid_run(name)  # last: it replaces the whole file
 
 
