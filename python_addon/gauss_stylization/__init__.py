@@ -19,14 +19,14 @@ if "bpy" in locals():  # F8 / script reload: reload the submodules too
     import importlib
     for _module in (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
                     rest_store, settings_io, session, runs, viewport, directions, orientation, surface,
-                    style_from_data, gauss_sphere, gpu_compat, sphere_overlay, sphere_editing, operators,
-                    slot_operators, ui):
+                    style_from_data, gauss_sphere, gpu_compat, sphere_overlay, sphere_editing, handles,
+                    handle_tool, operators, slot_operators, ui):
         importlib.reload(_module)
 else:
     from . import (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
                    rest_store, settings_io, session, runs, viewport, directions, orientation, surface,
-                   style_from_data, gauss_sphere, gpu_compat, sphere_overlay, sphere_editing, operators,
-                   slot_operators, ui)
+                   style_from_data, gauss_sphere, gpu_compat, sphere_overlay, sphere_editing, handles,
+                   handle_tool, operators, slot_operators, ui)
 
 import bpy
 
@@ -41,9 +41,11 @@ def register():
     runs.register_handlers()
     sphere_overlay.register()
     sphere_editing.register_keymaps()
+    handle_tool.register()
 
 
 def unregister():
+    handle_tool.unregister()
     sphere_editing.unregister_keymaps()
     sphere_overlay.unregister()
     runs.unregister_handlers()

@@ -17,6 +17,11 @@ def live_session(obj):
     return None if run is None else run.session
 
 
+def live_sessions():
+    """The sessions of every live run."""
+    return [run.session for run in runs.running.values()]
+
+
 _triangles = {}  # "key": a mesh's identity and counts, "triangles": its loop triangles
 
 

@@ -1,6 +1,6 @@
 """Median cost of one modal tick on the 35K bunny, headless.
 
-    blender -b --factory-startup -P tests/blender/measure_tick.py -- BUILD_DIR [MESH] [TICKS]
+    blender -b --factory-startup -P tests/blender/measure_tick.py -- BUILD_DIR [MESH] [TICKS] [--drag]
 
 A tick is what OBJECT_OT_gauss_stylize does on each timer event: apply changed
 settings (none here), one solver step, vertices_into the preallocated buffer,
@@ -8,6 +8,11 @@ foreach_set into the mesh, mesh.update(). The redraw request (area.tag_redraw)
 is free without a window; the windowed driver reports live ticks too.
 Prints a line "median tick ms: X (step: Y, write-back: Z)". No assertion:
 timing depends on the machine.
+
+--drag: the bunny's top (ears, 3% of its height) and bottom are pinned, two
+handles, and every tick moves the top handle a little before the tick, as a
+mouse drag does (handles.Drag.update -> Handles.move -> Solver.set_pin_positions).
+Prints "median drag tick ms: X (move: M, step: Y, write-back + sync: Z)".
 """
 
 import os
@@ -23,6 +28,8 @@ REPO = os.path.dirname(os.path.dirname(HERE))
 
 def main():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    drag = "--drag" in argv
+    argv = [a for a in argv if a != "--drag"]
     build = os.path.abspath(argv[0] if argv else os.path.join(REPO, "build"))
     mesh = argv[1] if len(argv) > 1 else "bunny/bun_zipper_35947.obj"
     ticks = int(argv[2]) if len(argv) > 2 else 60
@@ -33,13 +40,20 @@ def main():
     obj = bpy.context.selected_objects[0]
     bpy.context.view_layer.objects.active = obj
 
+    if drag:
+        pin_top_and_bottom(obj)
     start = time.perf_counter()
     gauss_stylization.session.ensure_style_slot(obj.gauss_stylization)
     run = gauss_stylization.session.Session(obj)
     setup_ms = (time.perf_counter() - start) * 1000.0
-    tick_ms = []
-    for _ in range(ticks):
+    handles = gauss_stylization.handles.Handles(run) if drag else None
+    tick_ms, move_ms = [], []
+    for tick in range(ticks):
         start = time.perf_counter()
+        if handles is not None:  # the mouse moved since the last tick
+            top = handles.parts[-1]
+            handles.move(len(handles.parts) - 1, handles.targets[top] + [0.0005, 0.0, 0.0])
+            move_ms.append((time.perf_counter() - start) * 1000.0)
         run.sync_settings()
         run.step()
         tick_ms.append((time.perf_counter() - start) * 1000.0)
@@ -48,8 +62,28 @@ def main():
     tick = statistics.median(tick_ms)
     print("mesh %s: %d vertices, %d solver faces, set-up %.0f ms"
           % (mesh, run.arrays.num_vertices, len(run.arrays.triangles), setup_ms))
-    print("median tick ms: %.2f (step: %.2f, write-back + sync: %.2f) over %d ticks, %d threads"
-          % (tick, step, tick - step, ticks, run.gauss_core.get_num_threads()))
+    if handles is None:
+        print("median tick ms: %.2f (step: %.2f, write-back + sync: %.2f) over %d ticks, %d threads"
+              % (tick, step, tick - step, ticks, run.gauss_core.get_num_threads()))
+        return
+    move = statistics.median(move_ms)
+    print("median drag tick ms: %.2f (move: %.2f, step: %.2f, write-back + sync: %.2f) over %d ticks, "
+          "%d threads, %d pins in %d handles, factorizations: %d"
+          % (tick, move, step, tick - step - move, ticks, run.gauss_core.get_num_threads(),
+             len(handles.pins), len(handles.parts), run.solver.factorization_count))
+
+
+def pin_top_and_bottom(obj, share=0.03):
+    """A vertex group "Handles" of the top and bottom ``share`` of the mesh's height (its own Z...
+    or Y for a Y-up scan) and the object's Pin Group set to it."""
+    from gauss_stylization import mesh_io
+    coords = mesh_io.read_vertex_coords(obj.data)
+    up = coords[:, 1] if obj.rotation_euler[0] != 0.0 else coords[:, 2]  # OBJ import turns Y-up scans
+    low, high = up.min(), up.max()
+    chosen = (up < low + share * (high - low)) | (up > high - share * (high - low))
+    group = obj.vertex_groups.new(name="Handles")
+    group.add([int(i) for i in chosen.nonzero()[0]], 1.0, 'REPLACE')
+    obj.gauss_stylization.pin_group = "Handles"
 
 
 main()

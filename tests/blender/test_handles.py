@@ -1,0 +1,112 @@
+"""Pin handles, headless: the parts of a pin group, moving a handle's targets during a
+run without re-factoring, refusing what the solver refuses, and plain ARAP dragging.
+(Grabbing and dragging with the mouse is tried in a real window: windowed_interactive.py.)"""
+
+import numpy as np
+
+import helpers
+
+
+def _pinned_sphere(addon, lam=None):
+    """A UV sphere with two pin handles: a cap at the bottom and one at the top."""
+    obj = helpers.uv_sphere(32, 16)
+    z = helpers.coords(obj)[:, 2]
+    helpers.add_group(obj, "Pins", np.flatnonzero((z < -0.9) | (z > 0.9)))
+    helpers.add_slot(obj, 'CUBE')
+    settings = {"pin_group": "Pins"}
+    if lam is not None:
+        settings["lam"] = lam
+    helpers.settings_io.apply_dict(obj.gauss_stylization, settings)
+    return obj, addon.session.Session(obj)
+
+
+def test_each_connected_part_of_the_pins_is_one_handle(addon):
+    triangles = np.array([[0, 1, 2], [2, 3, 4], [5, 6, 7], [7, 8, 9]])
+    parts = addon.handles.pin_parts([9, 0, 4, 7, 3, 6, 2], triangles)
+    pins = np.array([9, 0, 4, 7, 3, 6, 2])
+    assert [sorted(pins[p]) for p in parts] == [[6, 7, 9], [0, 2, 3, 4]]  # in the order of their first pin
+    assert addon.handles.pin_parts([], triangles) == []
+    assert len(addon.handles.pin_parts([0, 5], triangles)) == 2  # not joined by a triangle
+
+
+def test_moving_a_handle_moves_its_pins_without_refactoring_and_the_mesh_follows(addon):
+    obj, run = _pinned_sphere(addon)
+    try:
+        handles = addon.handles.Handles(run)
+        assert len(handles.parts) == 2
+        top = next(k for k, part in enumerate(handles.parts) if handles.targets[part, 2].mean() > 0)
+        run.step(5)
+        before = run.result.copy()
+        offset = np.array([0.4, 0.0, 0.2])
+        moved = handles.targets[handles.parts[top]] + offset
+        assert handles.move(top, moved)
+        run.step(5)
+        pins = handles.pins[handles.parts[top]]
+        assert np.allclose(run.result[pins], moved, atol=1e-6)  # float32 write-back of exact targets
+        other = handles.pins[handles.parts[1 - top]]
+        assert np.array_equal(run.result[other], before[other])  # the other handle stays
+        upper = np.flatnonzero((run.arrays.coords[:, 2] > 0.5) & (run.arrays.coords[:, 2] <= 0.9))
+        assert (run.result[upper, 0] - before[upper, 0]).mean() > 0.1  # the mesh near the top follows
+        assert run.solver.factorization_count == 1
+    finally:
+        run.cancel()
+
+
+def test_targets_the_solver_refuses_change_nothing(addon):
+    obj, run = _pinned_sphere(addon)
+    try:
+        handles = addon.handles.Handles(run)
+        kept = handles.targets.copy()
+        assert not handles.move(0, np.full((len(handles.parts[0]), 3), 1e20))
+        assert np.array_equal(handles.targets, kept) and np.array_equal(run.solver.pin_positions, kept)
+        run.step(2)
+        assert np.isfinite(run.result).all()
+    finally:
+        run.cancel()
+
+
+def test_cancel_after_dragging_restores_the_mesh_bit_exactly(addon):
+    obj, run = _pinned_sphere(addon)
+    original = helpers.coords(obj)
+    handles = addon.handles.Handles(run)
+    for k in range(1, 6):
+        handles.move(0, handles.targets[handles.parts[0]] + 0.05)
+        run.step()
+    assert not np.array_equal(helpers.coords(obj), original)
+    run.cancel()
+    assert np.array_equal(helpers.coords(obj), original)
+
+
+def test_a_changed_pin_group_rebuilds_the_handles(addon):
+    obj, run = _pinned_sphere(addon)
+    try:
+        handles = addon.handles.Handles(run)
+        z = run.arrays.coords[:, 2]
+        helpers.add_group(obj, "Top", np.flatnonzero(z > 0.9))
+        run.weights = addon.mesh_io.read_group_weights(obj)  # as if the group existed at the start
+        obj.gauss_stylization.pin_group = "Top"
+        assert run.sync_settings() is None
+        assert not handles.current()
+        assert len(addon.handles.Handles(run).parts) == 1
+    finally:
+        run.cancel()
+
+
+def test_lambda_zero_drags_as_plain_arap(addon):
+    """Lambda 0 and every mu 0 both leave only the ARAP energy: the same drag settles in the
+    same shape (lambda 0 gets there faster; 300 steps: 1.6e-6 apart, measured)."""
+    results = []
+    for lam, mu in ((0.0, 1.0), (4.0, 0.0)):
+        obj, run = _pinned_sphere(addon, lam=lam)
+        start = helpers.coords(obj)
+        obj.gauss_stylization.styles[0].mu = mu
+        run.sync_settings()
+        handles = addon.handles.Handles(run)
+        top = next(k for k, part in enumerate(handles.parts) if handles.targets[part, 2].mean() > 0)
+        handles.move(top, handles.targets[handles.parts[top]] + [0.5, 0.0, 0.0])
+        run.step(300)
+        results.append(run.result.copy())
+        run.cancel()
+        helpers.clear_scene()
+    assert np.allclose(results[0], results[1], atol=1e-5)
+    assert np.abs(results[0] - start).max() > 0.3  # the drag did move the mesh
