@@ -182,11 +182,14 @@ def vertex_group(obj, name, select):
 def stylize(obj, styles, iterations=100, **settings):
     """Stylize ``obj`` through the add-on's operator, as a script would.
 
-    ``styles``: slot specs (dicts of slot fields, see settings_io.add_slot); ``settings``:
-    object settings (lam, pin_group, uncovered, ...); the rest keep the add-on's defaults.
-    Returns seconds spent in the operator.
+    ``styles``: slot specs (dicts of slot fields, see settings_io.add_slot), or None to keep
+    the object's slots; ``settings``: object settings (lam, pin_group, uncovered, ...); the
+    rest keep the add-on's defaults. Returns seconds spent in the operator.
     """
-    addon.settings_io.apply_dict(obj.gauss_stylization, dict(settings, styles=styles, iterations=iterations))
+    settings = dict(settings, iterations=iterations)
+    if styles is not None:
+        settings["styles"] = styles
+    addon.settings_io.apply_dict(obj.gauss_stylization, settings)
     activate(obj)
     start = time.perf_counter()
     result = bpy.ops.object.gauss_stylize(iterations=iterations)
