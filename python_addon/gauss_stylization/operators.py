@@ -5,14 +5,15 @@ import time
 import bpy
 from bpy.props import StringProperty
 
-from . import rest_store, runs, schema, settings_io, sphere_editing
+from . import handle_tool, rest_store, runs, schema, settings_io, sphere_editing
 from .errors import NativeModuleError, SettingsError
 from .session import Session, ensure_style_slot
 from .validation import object_problem, poll_result
 from .viewport import existing_area, over_viewport, redraw_viewports
 
 TICK_SECONDS = 0.01
-KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel")  # what modal() does with keys
+KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel",  # what modal() does with keys
+             "Drag a pin: move its handle")
 HINT = "  |  ".join(KEY_HINTS)
 _STEPS = schema.field(schema.OBJECT, "iterations")
 
@@ -103,6 +104,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         self._area_pointer = context.area.as_pointer() if context.area else None
         self._message = "starting"
         self._tick_ms = []
+        self._handles = handle_tool.HandleTool()
         window_manager = context.window_manager
         self._timer = window_manager.event_timer_add(TICK_SECONDS, window=context.window)
         window_manager.modal_handler_add(self)
@@ -127,6 +129,10 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             if not self._tick(context):
                 return {'CANCELLED'}
             return {'PASS_THROUGH'}  # other operators may own this timer event
+        taken = self._handles.event(context, event, [self._session])  # pin handles: press, drag, drop
+        if taken is not None:
+            self._show_status(context)
+            return taken
         if event.value != 'PRESS':
             return {'PASS_THROUGH'}
         if sphere_editing.claims(context, event):
@@ -176,6 +182,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         """
         if self._timer is None:
             return
+        self._handles.drop()
         session = self._session
         if keep:  # should this raise, the run is still on and modal() cancels it
             session.keep()
@@ -214,6 +221,9 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             text += "  |  %.1f ms/step, %.1f ms/tick" % (session.step_ms[-1], self._tick_ms[-1])
         if self._message:
             text += "  |  " + self._message
+        dragging = self._handles.hint()
+        if dragging:
+            return text + "  |  " + dragging
         return text + "  |  " + HINT
 
     @property

@@ -8,7 +8,7 @@ import os
 import bpy
 import numpy as np
 
-from gauss_stylization import gauss_sphere, native, settings_io, sphere_overlay, styles
+from gauss_stylization import gauss_sphere, handles, native, settings_io, sphere_overlay, styles
 
 
 # -- where things are on screen ---------------------------------------------------------
@@ -199,7 +199,132 @@ def sphere_editing_during_a_run(d, name):
     obj.gauss_stylization.show_gauss_sphere = False
 
 
+# -- pin handles ---------------------------------------------------------------------------
+
+def _pin_top_and_bottom(d, obj, share=0.06):
+    """Pin Group "Handles": the top and bottom ``share`` of the world-space height (ears, feet)."""
+    world = np.array(obj.matrix_world)
+    z = d.coords(obj) @ world[2, :3] + world[2, 3]
+    low, high = z.min(), z.max()
+    chosen = np.flatnonzero((z < low + share * (high - low)) | (z > high - share * (high - low)))
+    if "Handles" in obj.vertex_groups:
+        obj.vertex_groups.remove(obj.vertex_groups["Handles"])
+    obj.vertex_groups.new(name="Handles").add([int(i) for i in chosen], 1.0, 'REPLACE')
+    settings_io.apply_dict(obj.gauss_stylization, {"pin_group": "Handles", "show_gauss_sphere": False,
+                                                   "styles": [{"preset": 'CUBE'}], "active_style_index": 0})
+
+
+def _pixels(d, obj, points):
+    """Window pixels (N by 2) of object-space points in the 3D view."""
+    area, region = _main_region(d)
+    return handles.project(np.asarray(points, float), obj.matrix_world, region, region.data) + [region.x, region.y]
+
+
+def _top_handle(d, obj):
+    """(pins of the highest handle, the window pixel of its pin nearest to its middle)."""
+    session = d.live_operator().session
+    found = handles.Handles(session)
+    world_z = [np.mean(found.targets[part] @ np.array(obj.matrix_world)[2, :3]) for part in found.parts]
+    part = found.parts[int(np.argmax(world_z))]
+    pins = found.pins[part]
+    pixels = _pixels(d, obj, found.targets[part])
+    middle = pixels.mean(axis=0)
+    return pins, pixels[int(np.argmin(np.hypot(*(pixels - middle).T)))]
+
+
+def _drag_handle(d, start, offset, key=None, moves=10):
+    """Press on a pin at ``start``, move by ``offset`` pixels (pressing ``key`` first), release."""
+    win = d.window()
+    x0, y0 = int(round(start[0])), int(round(start[1]))
+    win.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x0, y=y0)
+    win.event_simulate(type='LEFTMOUSE', value='PRESS', x=x0, y=y0)
+    if key:
+        win.event_simulate(type=key, value='PRESS', x=x0, y=y0)
+        win.event_simulate(type=key, value='RELEASE', x=x0, y=y0)
+    for k in range(1, moves + 1):
+        win.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x0 + int(offset[0] * k / moves),
+                           y=y0 + int(offset[1] * k / moves))
+
+
+def _release(d, at):
+    d.window().event_simulate(type='LEFTMOUSE', value='RELEASE', x=int(round(at[0])), y=int(round(at[1])))
+
+
+def handle_dragging(d, name):
+    obj = d.activate(bpy.data.objects[name])
+    _pin_top_and_bottom(d, obj)
+    d.push_undo("Handles")
+    original = d.coords(obj)
+    yield from d.live_run(3)
+    pins, grab = _top_handle(d, obj)
+    before = d.coords(obj)
+    others = np.setdiff1d(np.array(d.live_operator().session.solver.pinned), pins)
+    start_pixels = _pixels(d, obj, before[pins])
+    steps = d.live_operator().session.steps
+    _drag_handle(d, grab, (100, 0))
+    yield from d.wait_steps(steps + 3)  # still holding the button
+    area_screenshot(d, os.path.join(d.SHOTS, "handle_drag.png"))
+    op = d.live_operator()
+    d.check("a press on a pin grabs its handle and the run keeps stepping while it is dragged",
+            op is not None and op._handles.drag is not None and op.session.steps > steps + 2,
+            "steps %d -> %s" % (steps, op.session.steps if op else None))
+    _release(d, (grab[0] + 100, grab[1]))
+    yield from d.wait_steps(d.live_operator().session.steps + 5)
+    now = d.coords(obj)
+    area, region = _main_region(d)
+    moved = _pixels(d, obj, now[pins]) - start_pixels
+    error = np.abs(moved - [100, 0]).max()
+    d.check("the dragged handle's pins end where the mouse says (100 px), within 1% of the view's width",
+            error <= 0.01 * region.width, "largest error %.2f px (width %d)" % (error, region.width))
+    near_top = np.setdiff1d(np.flatnonzero(_pixels(d, obj, before)[:, 1] > start_pixels[:, 1].min() - 60), pins)
+    follow = (_pixels(d, obj, now[near_top]) - _pixels(d, obj, before[near_top]))[:, 0].mean()
+    d.check("the rest of the mesh follows the handle", follow > 10.0, "vertices near it moved %.1f px" % follow)
+    d.check("the other handles stay where they are", np.array_equal(now[others], before[others]))
+    d.check("dragging does not re-factor", d.live_operator().session.solver.factorization_count == 1)
+
+    pins, grab = _top_handle(d, obj)
+    world = np.array(obj.matrix_world)
+    held = (d.coords(obj)[pins] @ world[:3, :3].T)
+    _drag_handle(d, grab, (-60, 40), key='Z')
+    yield 0.4
+    _release(d, (grab[0] - 60, grab[1] + 40))
+    yield from d.wait_steps(d.live_operator().session.steps + 3)
+    along = d.coords(obj)[pins] @ world[:3, :3].T - held
+    d.check("Z while dragging moves the handle along the global Z axis only",
+            np.abs(along[:, :2]).max() < 1e-4 and np.abs(along[:, 2]).min() > 1e-3,
+            "x/y drift %.2g, z moved %.3g" % (np.abs(along[:, :2]).max(), np.abs(along[:, 2]).min()))
+
+    pins, grab = _top_handle(d, obj)
+    targets = np.array(d.live_operator().session.solver.pin_positions)
+    _drag_handle(d, grab, (40, 40))
+    yield 0.3
+    d.press('RIGHTMOUSE', int(grab[0]) + 40, int(grab[1]) + 40)
+    yield 0.3
+    op = d.live_operator()
+    d.check("a right-click during a drag puts the handle back and the run goes on",
+            op is not None and np.array_equal(op.session.solver.pin_positions, targets))
+    d.window().event_simulate(type='LEFTMOUSE', value='RELEASE', x=int(grab[0]) + 40, y=int(grab[1]) + 40)
+    yield from d.end_with('ESC', "Esc after dragging handles restores the mesh bit-exactly", name, original)
+
+    yield from d.live_run(3)
+    pins, grab = _top_handle(d, obj)
+    _drag_handle(d, grab, (50, -30))
+    _release(d, (grab[0] + 50, grab[1] - 30))
+    yield from d.wait_steps(d.live_operator().session.steps + 5)
+    d.press('RET', *d.viewport_point())
+    yield from d.wait_stopped()
+    kept = d.coords(bpy.data.objects[name])
+    d.check("Enter keeps the dragged result", d.live_operator() is None and not np.array_equal(kept, original))
+    d.press('Z', *d.viewport_point(), ctrl=True)
+    yield 0.5
+    d.check("one Ctrl+Z then brings the mesh back bit-exactly",
+            np.array_equal(d.coords(bpy.data.objects[name]), original))
+    obj = bpy.data.objects[name]
+    obj.gauss_stylization.pin_group = ""
+
+
 def scenario(d, name):
     yield from sphere_is_drawn(d, name)
     yield from sphere_editing(d, name)
     yield from sphere_editing_during_a_run(d, name)
+    yield from handle_dragging(d, name)
