@@ -22,6 +22,7 @@ import scene_cube_stays_cube  # noqa: E402
 import scene_extreme  # noqa: E402
 import scene_from_example  # noqa: E402
 import scene_gauss_sphere  # noqa: E402
+import scene_handles  # noqa: E402
 import scene_kit  # noqa: E402
 import scene_multistyle  # noqa: E402
 import scene_pins  # noqa: E402
@@ -29,7 +30,7 @@ import scene_sigma  # noqa: E402
 import scene_styles  # noqa: E402
 
 SCENES = (default_scene, scene_cube_stays_cube, scene_styles, scene_sigma, scene_pins,
-          scene_multistyle, scene_extreme, scene_from_example, scene_gauss_sphere)
+          scene_multistyle, scene_extreme, scene_handles, scene_from_example, scene_gauss_sphere)
 
 
 def main():

@@ -5,7 +5,7 @@ import time
 import bpy
 from bpy.props import StringProperty
 
-from . import handle_tool, rest_store, runs, schema, settings_io, sphere_editing
+from . import handle_tool, handles, rest_store, runs, schema, settings_io, sphere_editing
 from .errors import NativeModuleError, SettingsError
 from .session import Session, ensure_style_slot
 from .validation import object_problem, poll_result
@@ -57,6 +57,10 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
                             tooltip="Solver steps (scripts: defaults to the object's Script Steps setting)")
     # Settings a kept live run ended with, so the redo panel repeats that run (JSON, see settings_io).
     settings_json: StringProperty(options={'HIDDEN', 'SKIP_SAVE'})
+    # Where a kept live run left dragged pins, so the redo panel repeats it; scripts may set it too:
+    # '{"object name": [[x, y, z], ...]}', one target per Pin Group vertex (handles.targets_json).
+    pin_targets: StringProperty(name="Pin Targets", options={'HIDDEN', 'SKIP_SAVE'},
+                                description="New positions of the pinned vertices, JSON by object name")
 
     @classmethod
     def poll(cls, context):
@@ -78,6 +82,8 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         if session is None:
             return {'CANCELLED'}
         try:
+            if self.pin_targets:
+                handles.apply_targets_json([session], self.pin_targets)
             if self.iterations:
                 session.step(self.iterations)
         except SettingsError as exc:
@@ -188,6 +194,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             session.keep()
             self.iterations = session.steps
             self.settings_json = settings_io.to_json(session.obj.gauss_stylization)
+            self.pin_targets = handles.targets_json([session])
         try:
             if not keep:
                 session.cancel()  # restores whatever still exists, never freed data

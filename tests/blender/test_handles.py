@@ -2,7 +2,12 @@
 run without re-factoring, refusing what the solver refuses, and plain ARAP dragging.
 (Grabbing and dragging with the mouse is tried in a real window: windowed_interactive.py.)"""
 
+import json
+import re
+
+import bpy
 import numpy as np
+import pytest
 
 import helpers
 
@@ -110,3 +115,52 @@ def test_lambda_zero_drags_as_plain_arap(addon):
         helpers.clear_scene()
     assert np.allclose(results[0], results[1], atol=1e-5)
     assert np.abs(results[0] - start).max() > 0.3  # the drag did move the mesh
+
+
+def test_a_script_moves_handles_with_pin_targets(addon):
+    obj = helpers.uv_sphere(32, 16)
+    start = helpers.coords(obj)
+    z = start[:, 2]
+    pins = np.flatnonzero((z < -0.9) | (z > 0.9))
+    helpers.add_group(obj, "Pins", pins)
+    helpers.add_slot(obj, 'CUBE')
+    targets = start[pins].astype(np.float64)
+    targets[z[pins] > 0] += [0.5, 0.0, 0.3]  # the top cap moved, the bottom one kept
+    obj.gauss_stylization.pin_group = "Pins"
+    text = json.dumps({obj.name: targets.tolist()})
+    assert bpy.ops.object.gauss_stylize(iterations=20, pin_targets=text) == {'FINISHED'}
+    after = helpers.coords(obj)
+    assert np.allclose(after[pins], targets.astype(np.float32), atol=1e-6)
+    assert (after[z > 0.5, 0] - start[z > 0.5, 0]).mean() > 0.1  # the mesh near the top followed
+
+
+def test_bad_pin_targets_are_refused_and_change_nothing(addon):
+    obj = helpers.uv_sphere(16, 8)
+    z = helpers.coords(obj)[:, 2]
+    helpers.add_group(obj, "Pins", np.flatnonzero(z > 0.9))
+    helpers.add_slot(obj, 'CUBE')
+    obj.gauss_stylization.pin_group = "Pins"
+    count = int((z > 0.9).sum())
+    original = helpers.coords(obj)
+    cases = [("{not json", "Unreadable pin targets"),
+             (json.dumps([[0, 0, 0]]), "Unreadable pin targets"),
+             (json.dumps({"Elsewhere": [[0, 0, 0]]}), "'Elsewhere', which is not being stylized"),
+             (json.dumps({obj.name: [[0, 0, 0]] * (count + 1)}), "%d targets for %d pinned" % (count + 1, count)),
+             (json.dumps({obj.name: [[1e30, 0, 0]] * count}), "Pin targets of '%s'" % obj.name),
+             (json.dumps({obj.name: [["x", 0, 0]] * count}), "Pin targets of '%s'" % obj.name)]
+    for text, message in cases:
+        with pytest.raises(RuntimeError, match=re.escape(message)):
+            bpy.ops.object.gauss_stylize(iterations=3, pin_targets=text)
+        assert np.array_equal(helpers.coords(obj), original)
+
+
+def test_targets_json_names_only_moved_pins(addon):
+    obj, run = _pinned_sphere(addon)
+    try:
+        assert addon.handles.targets_json([run]) == ""
+        handles = addon.handles.Handles(run)
+        handles.move(0, handles.targets[handles.parts[0]] + 0.1)
+        data = json.loads(addon.handles.targets_json([run]))
+        assert list(data) == [obj.name] and np.allclose(data[obj.name], handles.targets)
+    finally:
+        run.cancel()

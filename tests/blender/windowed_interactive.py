@@ -1,8 +1,9 @@
-"""Windowed scenarios of the interactive tools (issue 9): the Gauss sphere overlay and
-editing on it. Run by windowed_driver.py, whose helpers (check, press, window, view3d,
+"""Windowed scenarios of the interactive tools (issue 9): the Gauss sphere overlay, editing
+on it, and dragging pin handles during a live run. Run by windowed_driver.py, whose helpers (check, press, window, view3d,
 live_run, wait_steps, ...) arrive as ``d``; every press and drag is simulated.
 """
 
+import json
 import os
 
 import bpy
@@ -315,6 +316,9 @@ def handle_dragging(d, name):
     yield from d.wait_stopped()
     kept = d.coords(bpy.data.objects[name])
     d.check("Enter keeps the dragged result", d.live_operator() is None and not np.array_equal(kept, original))
+    last = bpy.context.window_manager.operators[-1]
+    d.check("... and the redo panel's operator holds where the handles were left",
+            last.bl_idname == "OBJECT_OT_gauss_stylize" and name in json.loads(last.properties.pin_targets or "{}"))
     d.press('Z', *d.viewport_point(), ctrl=True)
     yield 0.5
     d.check("one Ctrl+Z then brings the mesh back bit-exactly",
