@@ -51,15 +51,13 @@ def from_pixel(x, y, where):
     return np.array([u / length, v / length, 0.0]), False
 
 
-def icosphere(levels=SUBDIVISIONS):
-    """Unit vertices (N by 3) and outward triangles (M by 3) of a subdivided icosahedron."""
-    t = (1.0 + np.sqrt(5.0)) / 2.0
-    vertices = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
-                (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
-    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4),
-             (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8),
-             (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
-    vertices = [np.array(v, float) / np.linalg.norm(v) for v in vertices]
+def subdivided_sphere(vertices, faces, levels):
+    """Split every triangle in four ``levels`` times, pushing new vertices onto the unit sphere.
+
+    vertices: V by 3 (made unit length), faces: F by 3 outward triangles.
+    Returns (vertices #V by 3 float64, faces #F by 3 int64). (tests/python/meshes.py uses it too.)"""
+    vertices = [np.asarray(v, float) / np.linalg.norm(v) for v in vertices]
+    faces = [tuple(f) for f in faces]
     for _ in range(levels):
         middle = {}
 
@@ -76,7 +74,18 @@ def icosphere(levels=SUBDIVISIONS):
             ab, bc, ca = midpoint(a, b), midpoint(b, c), midpoint(c, a)
             finer += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
         faces = finer
-    return np.array(vertices), np.array(faces, np.int32)
+    return np.array(vertices), np.array(faces, np.int64)
+
+
+def icosphere(levels=SUBDIVISIONS):
+    """Unit vertices (N by 3) and outward triangles (M by 3) of a subdivided icosahedron."""
+    t = (1.0 + np.sqrt(5.0)) / 2.0
+    vertices = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
+                (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4),
+             (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8),
+             (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    return subdivided_sphere(vertices, faces, levels)
 
 
 def heat_colours(values):

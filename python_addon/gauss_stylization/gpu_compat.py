@@ -3,10 +3,11 @@
 Built-in shader names changed: 3.x has '3D_UNIFORM_COLOR' and friends (3.4 also
 accepts the new names), 4.0 removed the '2D_'/'3D_' prefixes, and 4.1+ adds
 'POINT_UNIFORM_COLOR', which draws round points sized by its 'size' uniform; the
-older shaders draw square points sized by gpu.state.point_size_set. Positions are
+older shaders draw square points sized by gpu.state.point_size_set (set for both). Positions are
 always given as 3-vectors (z = 0 for pixels), which every version's shaders take.
 """
 
+import bpy
 import gpu
 import numpy as np
 from gpu_extras.batch import batch_for_shader
@@ -67,10 +68,43 @@ def draw_points(points, colour, size):
     batch = batch_for_shader(program, 'POINTS', {"pos": _positions(points)})
     program.bind()
     program.uniform_float("color", colour)
-    if name == "POINT_UNIFORM_COLOR":
-        program.uniform_float("size", size)
-    else:
-        gpu.state.point_size_set(size)
+    if name == "POINT_UNIFORM_COLOR":  # its documented 'size' uniform; the state below as well
+        try:
+            program.uniform_float("size", size)
+        except ValueError:  # a build whose point shader reads only the state
+            pass
+    gpu.state.point_size_set(size)
     batch.draw(program)
-    if name != "POINT_UNIFORM_COLOR":
-        gpu.state.point_size_set(1.0)
+    gpu.state.point_size_set(1.0)
+
+
+class ViewDrawHandler:
+    """A draw handler of every 3D view's main region, added and removed once.
+
+    ``draw()`` runs at ``stage`` ('POST_VIEW': world space, 'POST_PIXEL': region pixels). An
+    exception in it would be printed at every redraw, so each distinct one is printed once
+    (named after ``title``) and the blend state put back."""
+
+    def __init__(self, title, draw, stage):
+        self.title, self.draw, self.stage = title, draw, stage
+        self.handle = None
+        self.failures = set()
+
+    def _run(self):
+        try:
+            self.draw()
+        except Exception as exc:
+            message = "%s: %s" % (type(exc).__name__, exc)
+            if message not in self.failures:
+                self.failures.add(message)
+                print("%s: %s" % (self.title, message))
+            gpu.state.blend_set('NONE')
+
+    def add(self):
+        if self.handle is None:
+            self.handle = bpy.types.SpaceView3D.draw_handler_add(self._run, (), 'WINDOW', self.stage)
+
+    def remove(self):
+        if self.handle is not None:
+            bpy.types.SpaceView3D.draw_handler_remove(self.handle, 'WINDOW')
+            self.handle = None

@@ -10,7 +10,6 @@ drawn as dots by a POST_VIEW draw handler, over the mesh, so hidden pins stay
 grabbable.
 """
 
-import bpy
 import gpu
 import numpy as np
 
@@ -23,7 +22,6 @@ DOT_PX, EDGE_PX = 7.0, 10.0
 MOVES = {'MOUSEMOVE', 'INBETWEEN_MOUSEMOVE'}
 
 _grabbed = {}  # "session", "pins": what the draw handler highlights
-_handle = None
 
 
 class HandleTool:
@@ -121,22 +119,13 @@ def draw_pins():
     gpu.state.blend_set('NONE')
 
 
-def _draw_handler():
-    try:
-        draw_pins()
-    except ReferenceError:  # an object freed between the run's check and the draw
-        gpu.state.blend_set('NONE')
+_handler = gpu_compat.ViewDrawHandler("Gauss pin handles", draw_pins, 'POST_VIEW')
 
 
 def register():
-    global _handle
-    if _handle is None:
-        _handle = bpy.types.SpaceView3D.draw_handler_add(_draw_handler, (), 'WINDOW', 'POST_VIEW')
+    _handler.add()
 
 
 def unregister():
-    global _handle
-    if _handle is not None:
-        bpy.types.SpaceView3D.draw_handler_remove(_handle, 'WINDOW')
-        _handle = None
+    _handler.remove()
     _grabbed.clear()

@@ -24,11 +24,9 @@ NORMAL_POINTS = (0.35, 0.95, 1.0, 0.6)
 DOT, DOT_EDGE, DOT_BEHIND = (1.0, 1.0, 1.0, 1.0), (0.0, 0.0, 0.0, 1.0), (1.0, 1.0, 1.0, 0.35)
 TEXT = (1.0, 1.0, 1.0, 0.9)
 
-_handle = None
 _sphere = None   # (vertices, triangles) of the icosphere, built on first use
 _colours = {}    # key of the style's fields -> (colours of the sphere's vertices, preferred normals)
 _sample = {}     # "key": mesh identity, "triangles": the sampled triangles (S by 3)
-_failures = set()
 
 
 def shown_object(context):
@@ -132,36 +130,20 @@ def draw(context):
 def _label(where, text):
     font = 0
     scale = bpy.context.preferences.system.ui_scale
-    try:
-        blf.size(font, 11.0 * scale)
-    except TypeError:  # Blender before 3.6 also wants the DPI
-        blf.size(font, int(11 * scale), 72)
+    blf.size(font, 11.0 * scale)  # no DPI argument: optional in 3.4, gone in 4.0
     blf.color(font, *TEXT)
     blf.position(font, where.x - where.radius, where.y + where.radius * 1.08 + 4.0 * scale, 0.0)
     blf.draw(font, text)
 
 
-def _draw_handler():
-    try:
-        draw(bpy.context)
-    except Exception as exc:  # a failing draw handler would print at every redraw
-        message = "%s: %s" % (type(exc).__name__, exc)
-        if message not in _failures:
-            _failures.add(message)
-            print("Gauss sphere overlay:", message)
-        gpu.state.blend_set('NONE')
+_handler = gpu_compat.ViewDrawHandler("Gauss sphere overlay", lambda: draw(bpy.context), 'POST_PIXEL')
 
 
 def register():
-    global _handle
-    if _handle is None:
-        _handle = bpy.types.SpaceView3D.draw_handler_add(_draw_handler, (), 'WINDOW', 'POST_PIXEL')
+    _handler.add()
 
 
 def unregister():
-    global _handle
-    if _handle is not None:
-        bpy.types.SpaceView3D.draw_handler_remove(_handle, 'WINDOW')
-        _handle = None
+    _handler.remove()
     _colours.clear()
     _sample.clear()

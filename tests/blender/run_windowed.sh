@@ -2,14 +2,15 @@
 # Drive the live (modal) Stylize operator in a real Blender window under Xvfb.
 #   tests/blender/run_windowed.sh [BUILD_DIR]
 # Prints "N passed, M failed"; exits non-zero on any failure, a crash or a hang.
-# The screenshot of the sidebar panel goes to BUILD_DIR/screenshots/panel.png.
+# Screenshots go to BUILD_DIR/screenshots/: the sidebar panel (panel.png), the Gauss sphere overlay
+# (sphere_overlay.png) and a pin handle being dragged (handle_drag.png).
 set -u
 HERE=$(cd "$(dirname "$0")" && pwd)
 BUILD=$(cd "${1:-$HERE/../../build}" && pwd) || { echo "windowed: no build dir"; exit 2; }
 RESULT="$BUILD/screenshots/windowed_result.txt"
 mkdir -p "$BUILD/screenshots"
 rm -f "$RESULT"
-timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" \
+timeout 600 xvfb-run -a -s "-screen 0 1280x800x24" \
     blender --factory-startup --enable-event-simulate --python-exit-code 1 \
     -P "$HERE/windowed_driver.py" -- "$BUILD"
 STATUS=$?

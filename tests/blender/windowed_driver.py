@@ -35,7 +35,7 @@ import windowed_interactive  # noqa: E402  (the interactive tools' scenarios, is
 # e.g. bunny/bun_zipper_35947.obj to see live tick times on 35K vertices.
 MESH = os.path.join(REPO, "..", "shared", "meshes",
                     os.environ.get("GAUSS_WINDOWED_MESH", "small/spot_triangulated_2930.obj"))
-TIME_LIMIT = 240.0  # seconds; run_windowed.sh also wraps Blender in `timeout`
+TIME_LIMIT = 480.0  # seconds; run_windowed.sh also wraps Blender in `timeout`
 
 # Scripts given with -P run before the splash screen opens; turning it off here
 # keeps it out of the screenshot (factory startup: nothing is saved).
