@@ -134,6 +134,17 @@ def sphere_editing(d, name):
     d.push_undo("Custom style for sphere editing")
     yield 0.5
     where = sphere_frame(d)
+    # Presses away from the sphere keep their meaning: a click deselects, a drag box-selects.
+    # (Before any Ctrl+Z here: a simulated Ctrl stays down for the next drag, which then subtracts.)
+    d.press('LEFTMOUSE', int(where.x), int(where.y + 1.6 * where.radius))
+    yield 0.5
+    deselected = not obj.select_get()
+    area, region = _main_region(d)
+    drag(d, (region.x + 0.3 * region.width, region.y + region.height - 60),
+         (region.x + 0.75 * region.width, region.y + 60), moves=8)
+    yield 0.6
+    d.check("with the sphere editable, a drag beside it still box-selects",
+            deselected and obj.select_get() and len(pixels_of(d, obj)) == 1)
     target = free_spot(d, obj)
     d.press('LEFTMOUSE', int(target[0]), int(target[1]))
     yield 0.4
