@@ -7,10 +7,11 @@ unrotated style at R^T n). F is smooth but has many maxima (every symmetry of th
 style or of the surface gives one), so the search is global then local:
 
 1. a grid over SO(3) (a super-Fibonacci spiral of unit quaternions, Alexa 2022)
-   evaluated on coarsely binned normals; its local maxima are the seeds;
+   evaluated on coarsely binned normals (and the style at a sigma of at most
+   SEARCH_SIGMA, so narrow bumps are not stepped over); its local maxima are the seeds;
 2. each seed climbs to its maximum on the coarse normals (a damped Newton method
    with F's analytic gradient and Hessian, from the style's), the best few again
-   on finely binned normals;
+   on finely binned normals with the style as it is;
 3. among those whose fit equals the best (up to ``TIE``), the one with the smallest
    rotation angle wins, and it is then moved closer to no rotation while the fit
    stays the best: along a continuous symmetry (the rings of a cylinder or cone
@@ -23,6 +24,7 @@ import numpy as np
 from .directions import binned
 
 GRID_SIZE = 4000            # quaternions: ~12 degrees between neighbouring rotations
+SEARCH_SIGMA = 16.0         # bumps of g about 14 degrees wide: the grid cannot step over them
 NEIGHBOURHOOD = np.radians(20.0)  # a grid point no other this close beats is a seed
 SEEDS = 48                  # at most this many seeds (the best) are refined
 COARSE_DEGREES = 8.0        # normals binned this coarsely for the grid and the first refinement
@@ -204,19 +206,21 @@ def _local_maxima(quaternions, fits, radius):
     return np.array(keep, int)
 
 
-def best_rotation(style, normals, weights):
+def best_rotation(style, normals, weights, search_style=None):
     """The rotation (3 by 3) that turns a style so the surface fits it best, the smallest
     such rotation among equally good ones, and its fit (mean g).
 
-    style:   the unrotated gauss_core.Style
-    normals: the surface's unit normals (#T by 3); weights: their areas (#T, some > 0)
+    style:        the unrotated gauss_core.Style
+    normals:      the surface's unit normals (#T by 3); weights: their areas (#T, some > 0)
+    search_style: the same style with a lower sigma (at most SEARCH_SIGMA) for the coarse
+                  stages, whose grid would miss a high sigma's narrow bumps; default: ``style``
     """
     normals, weights = np.asarray(normals, np.float64), np.asarray(weights, np.float64)
     used = weights > 0
     if not used.any():
         raise ValueError("the surface has no area to fit a style to")
     normals, weights = normals[used], weights[used]
-    coarse = Fit(style, *binned(normals, weights, COARSE_DEGREES))
+    coarse = Fit(search_style or style, *binned(normals, weights, COARSE_DEGREES))
     fine = Fit(style, *binned(normals, weights, FINE_DEGREES))
 
     quaternions = super_fibonacci(GRID_SIZE)

@@ -116,6 +116,8 @@ class OBJECT_OT_gauss_style_auto_orient(bpy.types.Operator):
             return {'CANCELLED'}
         try:
             style = styles.checked_style(gauss_core, obj, slot, rotation=np.eye(3))
+            search = styles.checked_style(gauss_core, obj, slot, rotation=np.eye(3),
+                                          sigma=min(slot.sigma, orientation.SEARCH_SIGMA))
         except SettingsError as exc:
             self.report({'ERROR'}, str(exc))
             return {'CANCELLED'}
@@ -123,7 +125,7 @@ class OBJECT_OT_gauss_style_auto_orient(bpy.types.Operator):
         if not (areas > 0).any():
             self.report({'ERROR'}, "'%s' has no faces with area to fit the style to" % obj.name)
             return {'CANCELLED'}
-        rotation, fit = orientation.best_rotation(style, normals, areas)
+        rotation, fit = orientation.best_rotation(style, normals, areas, search)
         slot.orientation = Matrix(rotation.tolist()).to_euler('XYZ')
         self.report({'INFO'}, "Style '%s' turned by %.1f degrees: the mesh fits it with mean g %.3f"
                     % (slot.name, np.degrees(orientation.rotation_angle(rotation)), fit))

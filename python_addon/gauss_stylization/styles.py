@@ -23,26 +23,28 @@ def active_slot(settings):
     return settings.styles[index] if 0 <= index < len(settings.styles) else None
 
 
-def make_style(gauss_core, slot, rotation=None):
+def make_style(gauss_core, slot, rotation=None, sigma=None):
     """One style slot -> gauss_core.Style (may raise ValueError).
 
     Every slot field whose change rebuilds styles (Live.STYLES in schema.SLOT) is used here.
-    rotation: 3x3, instead of the slot's orientation (auto-orient evaluates the unrotated style)."""
+    rotation, sigma: instead of the slot's orientation and sigma (auto-orient evaluates the
+    unrotated style, and searches with a softer one)."""
     rotation = rotation_matrix(slot) if rotation is None else np.asarray(rotation, np.float64)
+    sigma = slot.sigma if sigma is None else sigma
     if slot.preset == CUSTOM:
         # Custom normals are rotated here, so "orientation" means the same for both kinds.
         normals = np.array(slot.custom_normal_list(), dtype=np.float64).reshape(-1, 3)
-        return gauss_core.Style(normals=normals @ rotation.T, sigma=slot.sigma, mu=slot.mu)
-    return gauss_core.Style.preset(slot.preset.lower(), sigma=slot.sigma, mu=slot.mu,
+        return gauss_core.Style(normals=normals @ rotation.T, sigma=sigma, mu=slot.mu)
+    return gauss_core.Style.preset(slot.preset.lower(), sigma=sigma, mu=slot.mu,
                                    rotation=rotation, axis_contribution=slot.axis_contribution)
 
 
-def checked_style(gauss_core, obj, slot, rotation=None):
+def checked_style(gauss_core, obj, slot, rotation=None, sigma=None):
     """make_style for one slot of ``obj`` on its own (the sphere overlay, auto-orient): its
     style fields are checked first, and any problem raises SettingsError naming the slot."""
     check_all(STYLE_FIELDS, slot, Where(obj, {}, _SLOT_NAME(slot)))
     try:
-        return make_style(gauss_core, slot, rotation)
+        return make_style(gauss_core, slot, rotation, sigma)
     except ValueError as exc:
         raise SettingsError("%s cannot be built: %s" % (_SLOT_NAME(slot), exc)) from exc
 

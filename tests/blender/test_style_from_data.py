@@ -195,6 +195,16 @@ def test_a_rotated_cube_gets_its_rotation_back(degrees):
     assert _angle(_orientation(slot), turn) < 1.0
 
 
+def test_a_high_sigma_still_finds_the_rotation():
+    """At sigma 1000 g's bumps are 2 degrees wide, far narrower than the search grid."""
+    obj = _cube("Turned")
+    turn = _rotation((20, 30, 10))
+    obj.data.transform(Matrix(turn.tolist()).to_4x4())
+    slot = helpers.add_slot(obj, 'CUBE', sigma=1000.0)
+    assert bpy.ops.object.gauss_style_auto_orient() == {'FINISHED'}
+    assert _angle(_orientation(slot), turn) < 1.0
+
+
 def test_a_cube_turned_further_gets_the_nearest_equivalent_rotation():
     obj = _cube("Turned")
     turn = _rotation((50, -10, 70))  # 88 degrees; a cube looks the same turned by 90 about its axes
