@@ -9,10 +9,12 @@ is free without a window; the windowed driver reports live ticks too.
 Prints a line "median tick ms: X (step: Y, write-back: Z)". No assertion:
 timing depends on the machine.
 
---drag: the bunny's top (ears, 3% of its height) and bottom are pinned, two
-handles, and every tick moves the top handle a little before the tick, as a
-mouse drag does (handles.Drag.update -> Handles.move -> Solver.set_pin_positions).
-Prints "median drag tick ms: X (move: M, step: Y, write-back + sync: Z)".
+--drag: the bunny's top (ears, 3% of its height) and bottom are pinned (its
+handles), and in every other block of DRAG_BLOCK ticks one ear's handle moves a
+little before each tick, as a mouse drag does (Handles.move ->
+Solver.set_pin_positions); the blocks between hold it. Prints "median drag tick
+ms: X (move: M) ...; holding the handles: H ...": ticks while dragging and while
+holding, measured alternately under the same load.
 """
 
 import os
@@ -24,6 +26,7 @@ import bpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
+DRAG_BLOCK = 10  # --drag: ticks per block of moving (or holding) the handle
 
 
 def main():
@@ -47,16 +50,19 @@ def main():
     run = gauss_stylization.session.Session(obj)
     setup_ms = (time.perf_counter() - start) * 1000.0
     handles = gauss_stylization.handles.Handles(run) if drag else None
-    tick_ms, move_ms = [], []
+    tick_ms, move_ms, held_ms = [], [], []
     for tick in range(ticks):
+        # Dragging: blocks of DRAG_BLOCK ticks that move the top handle every tick, between blocks
+        # that hold it, so the two are measured alternately under the same machine load.
+        dragging = handles is not None and (tick // DRAG_BLOCK) % 2 == 1
         start = time.perf_counter()
-        if handles is not None:  # the mouse moved since the last tick
+        if dragging:  # the mouse moved since the last tick
             top = handles.parts[-1]
             handles.move(len(handles.parts) - 1, handles.targets[top] + [0.0005, 0.0, 0.0])
             move_ms.append((time.perf_counter() - start) * 1000.0)
         run.sync_settings()
         run.step()
-        tick_ms.append((time.perf_counter() - start) * 1000.0)
+        (tick_ms if handles is None or dragging else held_ms).append((time.perf_counter() - start) * 1000.0)
     run.cancel()
     step = statistics.median(run.step_ms)
     tick = statistics.median(tick_ms)
@@ -66,11 +72,11 @@ def main():
         print("median tick ms: %.2f (step: %.2f, write-back + sync: %.2f) over %d ticks, %d threads"
               % (tick, step, tick - step, ticks, run.gauss_core.get_num_threads()))
         return
-    move = statistics.median(move_ms)
-    print("median drag tick ms: %.2f (move: %.2f, step: %.2f, write-back + sync: %.2f) over %d ticks, "
+    print("median drag tick ms: %.2f (move: %.2f) over %d ticks; holding the handles: %.2f over %d ticks; "
           "%d threads, %d pins in %d handles, factorizations: %d"
-          % (tick, move, step, tick - step - move, ticks, run.gauss_core.get_num_threads(),
-             len(handles.pins), len(handles.parts), run.solver.factorization_count))
+          % (tick, statistics.median(move_ms), len(tick_ms), statistics.median(held_ms), len(held_ms),
+             run.gauss_core.get_num_threads(), len(handles.pins), len(handles.parts),
+             run.solver.factorization_count))
 
 
 def pin_top_and_bottom(obj, share=0.03):
