@@ -49,8 +49,9 @@ def pin_parts(pins, triangles):
         if np.array_equal(new, label):
             break
         label = new
-    roots = np.unique(label)
-    return [np.flatnonzero(label == root) for root in roots]
+    order = np.argsort(label, kind="stable")
+    starts = np.flatnonzero(np.diff(label[order], prepend=-1))
+    return np.split(order, starts[1:])
 
 
 def project(points, matrix_world, region, region_data):
@@ -75,6 +76,9 @@ class Handles:
         self.pins = np.asarray(solver.pinned, np.int64)
         self.targets = np.asarray(solver.pin_positions, np.float64).copy()
         self.parts = pin_parts(self.pins, session.arrays.triangles)
+        self.part_of = np.empty(len(self.pins), np.int64)  # pin (its row) -> its part
+        for index, members in enumerate(self.parts):
+            self.part_of[members] = index
 
     def current(self):
         """Still the solver's pins? (A changed Pin Group re-pins the solver mid-run.)"""
@@ -92,8 +96,7 @@ class Handles:
         nearest = int(np.argmin(distance))
         if distance[nearest] > PICK_PX * ui_scale:
             return None
-        part = next(k for k, members in enumerate(self.parts) if nearest in members)
-        return part, float(distance[nearest])
+        return int(self.part_of[nearest]), float(distance[nearest])
 
     def move(self, part, targets):
         """Give the pins of ``part`` new targets (N by 3, object space) and send all to the
