@@ -22,6 +22,13 @@ def _mesh_problem(context):
     return None if _mesh_object(context) is not None else "Select a mesh object first"
 
 
+def _slot_problem(context):
+    """Why Auto Orient cannot run on the (mesh) active object's slots, or None."""
+    if styles.active_slot(context.active_object.gauss_stylization) is None:
+        return "Add a style slot first"
+    return None
+
+
 def _core(operator):
     try:
         return native.core()
@@ -102,11 +109,7 @@ class OBJECT_OT_gauss_style_auto_orient(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        problem = _mesh_problem(context)
-        if problem is None:
-            if styles.active_slot(context.active_object.gauss_stylization) is None:
-                problem = "Add a style slot first"
-        return poll_result(cls, problem)
+        return poll_result(cls, _mesh_problem(context) or _slot_problem(context))
 
     def execute(self, context):
         obj = context.active_object
