@@ -19,6 +19,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import default_scene  # noqa: E402
 import render_kit  # noqa: E402
 import scene_cube_stays_cube  # noqa: E402
+import scene_cubic_vs_gauss  # noqa: E402
 import scene_extreme  # noqa: E402
 import scene_from_example  # noqa: E402
 import scene_gauss_sphere  # noqa: E402
@@ -30,7 +31,8 @@ import scene_sigma  # noqa: E402
 import scene_styles  # noqa: E402
 
 SCENES = (default_scene, scene_cube_stays_cube, scene_styles, scene_sigma, scene_pins,
-          scene_multistyle, scene_extreme, scene_handles, scene_from_example, scene_gauss_sphere)
+          scene_multistyle, scene_extreme, scene_cubic_vs_gauss, scene_handles, scene_from_example,
+          scene_gauss_sphere)
 
 
 def main():

@@ -197,6 +197,8 @@ def stylize(obj, styles, iterations=100, pin_targets="", **settings):
     seconds = time.perf_counter() - start
     if result != {'FINISHED'}:
         raise RuntimeError("gauss_stylize on %s returned %s" % (obj.name, result))
-    print("  stylized %-22s %6d vertices, %4d steps, lambda %g: %.2f s"
-          % (obj.name, len(obj.data.vertices), iterations, obj.gauss_stylization.lam, seconds))
+    s = obj.gauss_stylization
+    print("  stylized %-22s %6d vertices, %4d steps, %s lambda %g: %.2f s"
+          % (obj.name, len(obj.data.vertices), iterations, s.method.lower(),
+             s.cubic_lambda if s.method == 'CUBIC' else s.lam, seconds))
     return seconds

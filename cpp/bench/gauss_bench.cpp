@@ -1,12 +1,17 @@
-// gauss_bench MESH [--style NAME] [--lambda L] [--sigma S] [--mu M] [--steps N] [--admm N]
-//             [--threads N] [--out OUT.obj]        (defaults: the solver's, printed by usage())
+// gauss_bench MESH [--method gauss|cubic] [--style NAME] [--lambda L] [--sigma S] [--mu M] [--steps N]
+//             [--admm N] [--until TOL] [--threads N] [--out OUT.obj]   (defaults: the solver's, printed by usage())
 // Times set-up and steps of the solver on one mesh and reports how far the style took hold.
+// --lambda is the lambda of the chosen method (settings::lambda or settings::cubic_lambda); the cubic
+// method uses the style's mu and rotation only, and its share is measured against the cube's normals.
+// --until TOL steps until a step's reldV is below TOL (--steps N is then the cap) and reports the
+// steps and milliseconds that took (steps_to_converge, ms_to_converge).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -26,14 +31,18 @@ double median(std::vector<double> v) {
 }
 
 constexpr int kDefaultSteps = 50;
+constexpr int kDefaultCap = 5000;  // with --until and no --steps
 
 int usage() {
   namespace settings = gauss::settings;
   std::fprintf(stderr,
-               "usage: gauss_bench MESH [--style %s] [--lambda %g] [--sigma %g] [--mu %g] [--steps %d]\n"
-               "                   [--admm %d] [--threads N] [--out OUT.obj]\n",
-               settings::default_preset, settings::lambda.default_value, settings::sigma.default_value,
-               settings::mu.default_value, kDefaultSteps, static_cast<int>(settings::admm_iterations.default_value));
+               "usage: gauss_bench MESH [--method %s] [--style %s] [--lambda %g (cubic: %g)] [--sigma %g] [--mu %g]\n"
+               "                   [--steps %d] [--admm %d] [--until TOL (e.g. %g; then --steps is the cap, default %d)]\n"
+               "                   [--threads N] [--out OUT.obj]\n",
+               settings::default_method, settings::default_preset, settings::lambda.default_value,
+               settings::cubic_lambda.default_value, settings::sigma.default_value, settings::mu.default_value,
+               kDefaultSteps, static_cast<int>(settings::admm_iterations.default_value),
+               settings::tolerance.default_value, kDefaultCap);
   return 2;
 }
 
@@ -42,25 +51,38 @@ int usage() {
 int main(int argc, char** argv) {
   if (argc < 2) return usage();
   std::string mesh_path = argv[1], style = gauss::settings::default_preset, out_path;
+  std::string method_name = gauss::settings::default_method;
   namespace settings = gauss::settings;
-  double lambda = settings::lambda.default_value, sigma = settings::sigma.default_value,
-         mu = settings::mu.default_value;
-  int steps = kDefaultSteps, admm = static_cast<int>(settings::admm_iterations.default_value), threads = 0;
+  double lambda = -1, sigma = settings::sigma.default_value, mu = settings::mu.default_value;  // lambda < 0: the method's default
+  int steps = -1, admm = static_cast<int>(settings::admm_iterations.default_value), threads = 0;
+  bool until_converged = false;  // --until given; otherwise exactly `steps` steps
+  double until = 0;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (i + 1 >= argc) return usage();
     const char* v = argv[++i];
-    if (a == "--style") style = v;
+    if (a == "--method") method_name = v;
+    else if (a == "--style") style = v;
     else if (a == "--lambda") lambda = std::atof(v);
     else if (a == "--sigma") sigma = std::atof(v);
     else if (a == "--mu") mu = std::atof(v);
     else if (a == "--steps") steps = std::atoi(v);
     else if (a == "--admm") admm = std::atoi(v);
     else if (a == "--threads") threads = std::atoi(v);
+    else if (a == "--until") until_converged = true, until = std::atof(v);
     else if (a == "--out") out_path = v;
     else return usage();
   }
+  int method_index = -1;
+  for (size_t i = 0; i < std::size(settings::method_names); ++i)
+    if (method_name == settings::method_names[i]) method_index = static_cast<int>(i);
+  if (method_index < 0) return usage();
+  const gauss::Method method = static_cast<gauss::Method>(method_index);
+  const bool cubic = method == gauss::Method::cubic;
+  if (lambda < 0) lambda = cubic ? settings::cubic_lambda.default_value : settings::lambda.default_value;
+  if (steps < 0) steps = until_converged ? kDefaultCap : kDefaultSteps;
   try {
+    if (until_converged) settings::tolerance.check(until);
     if (threads > 0) gauss::parallel::set_max_threads(threads);
     std::printf("threads: %d\n", gauss::parallel::max_threads());
     gauss::TriangleMesh mesh = gauss::read_mesh(mesh_path);
@@ -72,17 +94,21 @@ int main(int argc, char** argv) {
 
     const auto t0 = std::chrono::steady_clock::now();
     gauss::GaussSolver solver(mesh.V.data(), mesh.num_vertices(), mesh.F.data(), mesh.num_faces(), {},
-                              nullptr, lambda);
+                              nullptr, cubic ? settings::lambda.default_value : lambda);
     solver.set_styles({g});
     solver.set_admm_iterations(admm);
+    if (cubic) solver.set_cubic_lambda(lambda);
+    solver.set_method(method);
     const double setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
-    std::vector<double> step_ms, faces, rotations, admm_ms, rhs, solve;
+    std::vector<double> step_ms, faces, rotations, admm_ms, rhs, solve, cubic_iterations;
     int multi_threaded_steps = 0;
+    double total_ms = 0;
     for (int s = 0; s < steps; ++s) {
       const auto t = std::chrono::steady_clock::now();
       solver.step();
       step_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count());
+      total_ms += step_ms.back();
       const gauss::StepTimings& pt = solver.last_timings();
       faces.push_back(pt.faces);
       rotations.push_back(pt.rotations);
@@ -90,9 +116,13 @@ int main(int argc, char** argv) {
       rhs.push_back(pt.rhs);
       solve.push_back(pt.solve);
       multi_threaded_steps += pt.threads > 1;
+      cubic_iterations.push_back(static_cast<double>(solver.cubic_admm_iterations()) / mesh.num_vertices());
+      if (until_converged && solver.last_reldv() < until) break;
     }
+    const int taken = static_cast<int>(step_ms.size());
+    std::printf("method: %s\nlambda: %g\n", settings::method_names[method_index], lambda);
     std::printf("setup_ms: %.2f\n", setup_ms);
-    std::printf("steps_on_all_threads: %d of %d\n", multi_threaded_steps, steps);
+    std::printf("steps_on_all_threads: %d of %d\n", multi_threaded_steps, taken);
     std::printf("factor_nonzeros: %lld\n", solver.factor_nonzeros());
     std::printf("step_ms_median: %.3f\n", median(step_ms));
     std::printf("phase_faces_ms_median: %.3f\n", median(faces));
@@ -100,15 +130,31 @@ int main(int argc, char** argv) {
     std::printf("phase_admm_ms_median: %.3f\n", median(admm_ms));
     std::printf("phase_rhs_ms_median: %.3f\n", median(rhs));
     std::printf("phase_solve_ms_median: %.3f\n", median(solve));
+    if (cubic) std::printf("cubic_admm_iterations_per_vertex_median: %.3f\n", median(cubic_iterations));
+    std::printf("last_reldv: %.4g\n", solver.last_reldv());
+    if (until_converged) {
+      if (solver.last_reldv() < until) {
+        std::printf("steps_to_converge: %d\n", taken);
+        std::printf("ms_to_converge: %.1f\n", total_ms);
+      } else {  // not a number: a table must not show the cap as if it were a result
+        std::printf("steps_to_converge: not within %d steps\n", taken);
+        std::printf("ms_to_converge: not within %.1f ms\n", total_ms);
+      }
+    }
 
     std::vector<double> result(mesh.V.size());
     solver.copy_vertices(result.data());
-    if (!params.normals.empty() && params.ring_offsets.empty()) {
-      const double before = gauss::alignment_share(mesh.V.data(), mesh.F.data(), mesh.num_faces(), g.normals());
-      const double after = gauss::alignment_share(result.data(), mesh.F.data(), mesh.num_faces(), g.normals());
+    // The cubic method's preferred normals are the cube's (the benchmark's style is not rotated).
+    const gauss::PreferenceFunction cube(gauss::preset_style("cube"));
+    const std::vector<Eigen::Vector3d>& share_normals = cubic ? cube.normals() : g.normals();
+    if (cubic || (!params.normals.empty() && params.ring_offsets.empty())) {
+      const double before = gauss::alignment_share(mesh.V.data(), mesh.F.data(), mesh.num_faces(), share_normals);
+      const double after = gauss::alignment_share(result.data(), mesh.F.data(), mesh.num_faces(), share_normals);
       std::printf("axis_share_10deg: %.4f -> %.4f\n", before, after);
     }
-    std::printf("E_g: %.6g\nE_ARAP: %.6g\n", solver.g_energy(), solver.arap_energy());
+    if (cubic) std::printf("E_cubic: %.6g\n", solver.cubic_energy());
+    else std::printf("E_g: %.6g\n", solver.g_energy());
+    std::printf("E_ARAP: %.6g\n", solver.arap_energy());
     if (!out_path.empty()) {
       gauss::TriangleMesh out = mesh;
       out.V = result;

@@ -72,7 +72,8 @@ def main():
     rss_mesh = peak_rss_mb()
 
     t = time.perf_counter()
-    s = gauss_core.Solver(V, F)
+    progress = gauss_core.Progress()
+    s = gauss_core.Solver(V, F, progress=progress)
     s.set_styles([gauss_core.Style.preset(args.style)])
     setup = time.perf_counter() - t
     rss_setup = peak_rss_mb()
@@ -90,6 +91,7 @@ def main():
     moved = np.abs(out - V).max()
 
     print(f"setup_s: {setup:.2f}")
+    print("setup phases (s): " + ", ".join(f"{k} {v:.2f}" for k, v in progress.seconds.items()))
     print(f"step_s: median {np.median(step_times):.3f}, first {step_times[0]:.3f}, all "
           + " ".join(f"{x:.3f}" for x in step_times))
     print("last step phases (ms): " + ", ".join(f"{k} {v:.0f}" for k, v in phases.items()))

@@ -15,9 +15,13 @@
 
 #include "gauss/direction_merge.h"
 #include "gauss/gauss_solver.h"
+#include "gauss/memory_budget.h"
 #include "gauss/parallel.h"
 #include "gauss/presets.h"
+#include "gauss/progress.h"
 #include "gauss/settings.h"
+#include "module_facts.h"
+#include "iteration_bindings.h"
 #include "numpy_arrays.h"
 
 namespace py = pybind11;
@@ -26,6 +30,7 @@ using gauss::GaussSolver;
 using gauss::PreferenceFunction;
 using gauss::StyleParams;
 using gauss_python::as_array;
+using gauss_python::parse_method;
 using gauss_python::eval_points;
 using gauss_python::read_matrix;
 using gauss_python::read_rotation;
@@ -47,19 +52,45 @@ Style make_style(std::string name, StyleParams params) {
   return s;
 }
 
+// The Progress a Python caller passed (None: none), kept alive for the duration of a set-up.
+std::shared_ptr<gauss::Progress> read_progress(const py::object& progress) {
+  if (progress.is_none()) return nullptr;
+  if (!py::isinstance<gauss::Progress>(progress)) throw py::type_error("progress must be a gauss_core.Progress or None");
+  return progress.cast<std::shared_ptr<gauss::Progress>>();
+}
+
 class Solver {
  public:
+  // Inputs are copied while the GIL is held; the set-up itself runs without it, so another Python
+  // thread (Blender's UI timer) can watch or cancel the progress meanwhile.
   Solver(const py::object& V, const py::object& F, const py::object& pinned, const py::object& pin_positions,
-         double lam, int admm_iterations) {
+         double lam, int admm_iterations, const std::string& method, double cubic_lambda, double tolerance,
+         bool keep_volume, const py::object& progress) {
+    const gauss::Method chosen = parse_method(method);  // refused before the set-up's cost
+    settings::cubic_lambda.check(cubic_lambda);
+    settings::tolerance.check(tolerance);
     std::vector<double> v = read_matrix<double>(V, 3, "V", false);
     std::vector<int64_t> f = read_matrix<int64_t>(F, 3, "F", true);
     std::vector<int64_t> pins;
     std::vector<double> targets;
     read_pins(pinned, pin_positions, pins, targets);
-    solver_ = std::make_unique<GaussSolver>(v.data(), static_cast<int>(v.size() / 3), f.data(),
-                                            static_cast<int>(f.size() / 3), pins,
-                                            targets.empty() ? nullptr : targets.data(), lam);
+    settings::admm_iterations.check(admm_iterations);
+    const std::shared_ptr<gauss::Progress> watcher = read_progress(progress);
+    {
+      py::gil_scoped_release release;
+      const int nV = static_cast<int>(v.size() / 3);
+      try {
+        solver_ = std::make_unique<GaussSolver>(v.data(), nV, f.data(), static_cast<int>(f.size() / 3), pins,
+                                                targets.empty() ? nullptr : targets.data(), lam, watcher.get());
+      } catch (const std::bad_alloc&) {
+        throw gauss::OutOfMemory("not enough memory to set up a mesh of " + std::to_string(nV) + " vertices");
+      }
+    }
     solver_->set_admm_iterations(admm_iterations);
+    solver_->set_cubic_lambda(cubic_lambda);
+    solver_->set_method(chosen);
+    solver_->set_tolerance(tolerance);
+    solver_->set_keep_volume(keep_volume);
     styles_.push_back(make_style(settings::default_preset, gauss::default_style()));
   }
 
@@ -80,12 +111,18 @@ class Solver {
     std::lock_guard<std::mutex> lock(mutex_);
     solver_->set_face_styles(s.data(), static_cast<int>(s.size()));
   }
-  void set_pins(const py::object& pinned, const py::object& positions) {
+  void set_pins(const py::object& pinned, const py::object& positions, const py::object& progress) {
     std::vector<int64_t> pins;
     std::vector<double> targets;
     read_pins(pinned, positions, pins, targets);
+    const std::shared_ptr<gauss::Progress> watcher = read_progress(progress);
+    py::gil_scoped_release release;
     std::lock_guard<std::mutex> lock(mutex_);
-    solver_->set_pins(pins, targets.empty() ? nullptr : targets.data());
+    try {
+      solver_->set_pins(pins, targets.empty() ? nullptr : targets.data(), watcher.get());
+    } catch (const std::bad_alloc&) {
+      throw gauss::OutOfMemory("not enough memory to re-factor the mesh for the new pins");
+    }
   }
   void set_pin_positions(const py::object& positions) {
     const size_t num_pins = solver_->pinned().size();
@@ -173,26 +210,7 @@ class Solver {
 PYBIND11_MODULE(gauss_core, m) {
   m.doc() = "Gauss stylization (Kohlbrenner et al. 2021): ARAP with preferred face normals.";
 
-  py::list presets;
-  for (const std::string& n : gauss::preset_names()) presets.append(n);
-  m.attr("PRESETS") = py::tuple(presets);
-  py::dict defaults, limits;
-  for (const gauss::Setting* setting : settings::all) {
-    if (setting->integer) {
-      defaults[setting->name] = static_cast<long>(setting->default_value);
-      limits[setting->name] = py::make_tuple(static_cast<long>(setting->min), static_cast<long>(setting->max));
-    } else {
-      defaults[setting->name] = setting->default_value;
-      limits[setting->name] = py::make_tuple(setting->min, setting->max);
-    }
-  }
-  defaults["preset"] = settings::default_preset;
-  m.attr("DEFAULTS") = defaults;
-  m.attr("LIMITS") = limits;
-  py::dict sizes;
-  sizes["normals"] = settings::max_style_normals;
-  sizes["rings"] = settings::max_style_rings;
-  m.attr("SIZE_LIMITS") = sizes;
+  gauss_python::export_facts(m);
 
   m.def("merge_directions", [](const py::object& normals, double max_angle_degrees, const py::object& weights) {
         std::vector<double> n = read_matrix<double>(normals, 3, "normals", false);
@@ -235,6 +253,48 @@ Directions are taken as seeds in order of decreasing weight (ties: by direction)
 every remaining direction within max_angle_degrees (0..90) of it and becomes their weighted mean.
 So every input lies within max_angle_degrees of its seed, any two seeds are farther apart than that,
 and the result does not depend on the order of the inputs. O(K log K).)doc");
+
+  py::register_exception<gauss::Cancelled>(m, "Cancelled", PyExc_RuntimeError);
+  m.attr("Cancelled").attr("__doc__") =
+      "Raised by a Solver set-up (the constructor, set_pins) whose Progress was cancelled.";
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const gauss::OutOfMemory& e) {
+      PyErr_SetString(PyExc_MemoryError, e.what());
+    }
+  });
+
+  py::class_<gauss::Progress, std::shared_ptr<gauss::Progress>>(m, "Progress", R"doc(
+Progress and cancellation of a set-up: pass one as Solver(..., progress=p) or
+set_pins(..., progress=p) and watch it from another thread (the set-up releases the GIL).
+
+p.fraction   0.0 .. 1.0, never decreases; roughly proportional to the set-up's time
+p.phase      '' before the start, then 'topology', 'weights', 'ordering', 'symbolic',
+             'factorizing' (set_pins: from 'ordering'), 'done' at the end
+p.cancel()   thread-safe; the set-up raises gauss_core.Cancelled soon after (it checks every few
+             milliseconds of work, then frees what it allocated)
+p.cancelled  whether cancel() was called (a cancelled Progress stays cancelled)
+p.seconds    {phase: seconds} of the last set-up it watched)doc")
+      .def(py::init<>())
+      .def_property_readonly("fraction", &gauss::Progress::fraction)
+      .def_property_readonly("phase", [](const gauss::Progress& p) { return std::string(p.phase()); })
+      .def("cancel", &gauss::Progress::cancel, "Asks the set-up to stop (it raises gauss_core.Cancelled).")
+      .def_property_readonly("cancelled", &gauss::Progress::cancelled)
+      .def_property_readonly("seconds", [](const gauss::Progress& p) {
+        py::dict d;
+        for (int i = 0; i < static_cast<int>(gauss::SetupPhase::count); ++i) {
+          const auto phase = static_cast<gauss::SetupPhase>(i);
+          d[gauss::phase_name(phase)] = p.seconds(phase);
+        }
+        return d;
+      })
+      .def("__repr__", [](const gauss::Progress& p) {
+        std::ostringstream o;
+        o << "<gauss_core.Progress " << p.phase() << " " << static_cast<int>(100 * p.fraction()) << "%"
+          << (p.cancelled() ? " cancelled" : "") << ">";
+        return o.str();
+      });
 
   m.def("set_num_threads", [](int n) {
         if (n < 1) throw py::value_error("the number of threads must be >= 1");
@@ -349,15 +409,27 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
 Gauss stylization of one triangle mesh. The constructor does the set-up (normalization, cotangent
 weights, topology, sparse Cholesky factorization); step() runs Algorithm 1 of the paper.
 
-Solver(V, F, pinned=None, pin_positions=None, lam, admm_iterations)  (defaults and ranges: DEFAULTS, LIMITS)
+Solver(V, F, pinned=None, pin_positions=None, lam, admm_iterations, method, cubic_lambda, tolerance,
+       keep_volume, progress=None)
+  (defaults and ranges: DEFAULTS, LIMITS)
   V: (#V, 3) float32/float64 coordinates.  F: (#F, 3) int32/int64 triangle indices.
   pinned: (#P,) vertex indices that keep their position; pin_positions: (#P, 3) targets
   (default: their rest positions).  lam: lambda.  admm_iterations: ADMM rounds per step.
+  method: one of METHODS, any case ('gauss': this paper; 'cubic': Cubic Stylization, whose strength is
+  cubic_lambda, scaled per face by its style's mu and turned by its style's rotation).
+  tolerance: the reldV below which `converged` is True.  keep_volume: see the property.
+  progress: a gauss_core.Progress to watch or cancel the set-up from another thread (the
+  set-up releases the GIL); a cancelled set-up raises gauss_core.Cancelled.
+Raises MemoryError if the mesh's factorization would not fit in the available memory.
 By default one style, DEFAULTS['preset'] with the default sigma and mu, applies to every face.)doc")
-      .def(py::init<const py::object&, const py::object&, const py::object&, const py::object&, double, int>(),
+      .def(py::init<const py::object&, const py::object&, const py::object&, const py::object&, double, int,
+                    const std::string&, double, double, bool, const py::object&>(),
            py::arg("V"), py::arg("F"), py::arg("pinned") = py::none(), py::arg("pin_positions") = py::none(),
            py::arg("lam") = settings::lambda.default_value,
-           py::arg("admm_iterations") = static_cast<int>(settings::admm_iterations.default_value))
+           py::arg("admm_iterations") = static_cast<int>(settings::admm_iterations.default_value),
+           py::arg("method") = settings::default_method, py::arg("cubic_lambda") = settings::cubic_lambda.default_value,
+           py::arg("tolerance") = settings::tolerance.default_value,
+           py::arg("keep_volume") = settings::keep_volume.default_value, py::arg("progress") = py::none())
       .def("set_styles", &Solver::set_styles, py::arg("styles"),
            "Replaces the style list (takes effect at the next step, no re-factorization).")
       .def("set_style", &Solver::set_style, py::arg("index"), py::arg("style"), "Replaces one style.")
@@ -365,7 +437,9 @@ By default one style, DEFAULTS['preset'] with the default sigma and mu, applies 
       .def("set_face_styles", &Solver::set_face_styles, py::arg("face_styles"),
            "(#F,) ints: style index per face, -1 = unstyled (pure ARAP). No re-factorization.")
       .def("set_pins", &Solver::set_pins, py::arg("pinned"), py::arg("positions") = py::none(),
-           "Sets the pinned vertices and their targets (re-factors).")
+           py::arg("progress") = py::none(),
+           "Sets the pinned vertices and their targets (re-factors; releases the GIL; progress as in the\n"
+           "constructor). On any error, Cancelled included, the solver keeps its previous pins.")
       .def("set_pin_positions", &Solver::set_pin_positions, py::arg("positions"),
            "(#P, 3) new targets for the current pins, in the order of `pinned`. No re-factorization; the pins\n"
            "sit at their targets at once, the rest of the mesh follows at the next step.")
@@ -378,6 +452,17 @@ By default one style, DEFAULTS['preset'] with the default sigma and mu, applies 
       .def_property("admm_iterations", [](Solver& s) { return s.core().admm_iterations(); },
                     [](Solver& s, int n) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_admm_iterations(n); },
                     "ADMM rounds per step (range: LIMITS['admm_iterations']).")
+      .def_property("method", [](Solver& s) { return settings::method_names[static_cast<int>(s.core().method())]; },
+                    [](Solver& s, const std::string& m) { const gauss::Method chosen = parse_method(m);
+                      std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_method(chosen); },
+                    "The next step's method (METHODS); switching keeps pins, styles and the factorization.")
+      .def_property("cubic_lambda", [](Solver& s) { return s.core().cubic_lambda(); },
+                    [](Solver& s, double l) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_cubic_lambda(l); },
+                    "lambda of the cubic method (range: LIMITS['cubic_lambda']).")
+      .def_property_readonly("cubic_admm_iterations", [](Solver& s) { return s.core().cubic_admm_iterations(); },
+                             "ADMM iterations of the last cubic step, summed over the vertices.")
+      .def_property_readonly("cubic_energy", [](Solver& s) { std::lock_guard<std::mutex> lock(s.mutex());
+                               return s.core().cubic_energy(); }, "sum_i lambda_i |Q_i^T R_i n_i|_1 of the last cubic step.")
       .def("step", &Solver::step, py::arg("n") = 1, "Runs n iterations (releases the GIL).")
       .def("reset", [](Solver& s) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().reset(); },
            "Current vertices := rest vertices; step_count := 0.")
@@ -402,4 +487,6 @@ By default one style, DEFAULTS['preset'] with the default sigma and mu, applies 
              d["faces"] = t.faces; d["rotations"] = t.rotations; d["admm"] = t.admm; d["rhs"] = t.rhs; d["solve"] = t.solve; d["threads"] = t.threads;
              return d;
            }, "Milliseconds per phase of the last step.");
+  py::class_<Solver> solver_class = py::reinterpret_borrow<py::class_<Solver>>(m.attr("Solver"));
+  gauss_python::bind_iteration(solver_class);
 }

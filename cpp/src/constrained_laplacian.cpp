@@ -12,7 +12,7 @@ using Eigen::Vector3d;
 
 ConstrainedLaplacian::ConstrainedLaplacian(const MeshTopology& topo, const std::vector<double>& edge_weight,
                                            const std::vector<Vector3d>& rest, const std::vector<int64_t>& pinned,
-                                           const std::vector<Vector3d>& pin_positions) {
+                                           const std::vector<Vector3d>& pin_positions, Progress* progress) {
   const int nV = topo.num_vertices;
   const int nC = topo.num_components;
   if (pin_positions.size() != pinned.size() || edge_weight.size() != topo.edges.size() ||
@@ -82,7 +82,7 @@ ConstrainedLaplacian::ConstrainedLaplacian(const MeshTopology& topo, const std::
       if (ua >= 0 && ub >= 0) A.insert(ub, ua) = -edge_weight[e];
     }
     A.makeCompressed();
-    cholesky_.factor(A);
+    cholesky_.factor(A, progress);
   }
   constant_rhs_.resize(n);
   update_constant_rhs();

@@ -9,6 +9,7 @@
 
 #include "gauss/closest_rotation.h"
 #include "gauss/cotangent_weights.h"
+#include "gauss/memory_budget.h"
 #include "gauss/normal_step.h"
 #include "gauss/parallel.h"
 #include "gauss/presets.h"
@@ -22,6 +23,10 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using Clock = std::chrono::steady_clock;
 
+// Memory the solver keeps per face (topology, rest quantities, ADMM buffers, edges) and per vertex,
+// rounded down from its members' sizes, for the early memory check.
+constexpr int64_t kSetupBytesPerFace = 400, kSetupBytesPerVertex = 200;
+
 double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
@@ -30,10 +35,17 @@ double ms_since(Clock::time_point t) {
 
 GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, int num_faces,
                          const std::vector<int64_t>& pinned, const double* pin_positions,
-                         double lambda) {
+                         double lambda, Progress* watcher) {
+  Progress unwatched;
+  Progress& progress = watcher ? *watcher : unwatched;
+  progress.start(SetupPhase::topology);
   if (num_vertices <= 0) throw std::invalid_argument("the mesh has no vertices");
   if (num_faces <= 0) throw std::invalid_argument("the mesh has no faces");
   settings::lambda.check(lambda);
+  // The per-face and per-vertex arrays alone (a lower bound; the factor is checked once its size is
+  // known): a mesh far too big for the machine is refused before anything is allocated.
+  check_memory(kSetupBytesPerFace * int64_t{num_faces} + kSetupBytesPerVertex * int64_t{num_vertices},
+               "a mesh of " + std::to_string(num_vertices) + " vertices and " + std::to_string(num_faces) + " faces");
   for (int i = 0; i < 3 * num_vertices; ++i)
     if (!std::isfinite(V[i])) {
       std::ostringstream msg;
@@ -53,7 +65,9 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   std::vector<int64_t> faces(3 * static_cast<size_t>(num_faces));
   for (int f = 0; f < num_faces; ++f)
     for (int k = 0; k < 3; ++k) faces[3 * f + k] = new_of_old_[F[3 * face_order[f] + k]];
-  topo_ = build_mesh_topology(num_vertices, faces.data(), num_faces);
+  progress.check();
+  topo_ = build_mesh_topology(num_vertices, faces.data(), num_faces, &progress);
+  progress.enter(SetupPhase::weights);
   for (int& f : topo_.input_face) f = face_order[f];
   num_input_faces_ = num_faces;
   lambda_ = lambda;
@@ -87,6 +101,7 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   X_ = rest_;
 
   compute_rest_quantities();
+  progress.check();
   const int nF = static_cast<int>(topo_.faces.size());
   normal_star_.assign(nF, Vector3d::UnitZ());
   dual_.assign(nF, {0, 0, 0});
@@ -96,10 +111,12 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   rotation_.assign(num_vertices, Matrix3d::Identity());
   rotation_q_.assign(num_vertices, Eigen::Quaterniond::Identity());
   corner_rhs_.resize(nF);
+  iteration_ = FixedPointIteration(num_vertices);
 
   styles_.emplace_back(default_style());
   face_style_.assign(nF, 0);
-  set_pins(pinned, pin_positions);
+  apply_pins(pinned, pin_positions, progress);
+  progress.finish();
 }
 
 void GaussSolver::compute_rest_quantities() {
@@ -223,7 +240,7 @@ void GaussSolver::admm_round(bool first_round) {
   });
 }
 
-void GaussSolver::assemble_rhs() {
+void GaussSolver::assemble_rhs(bool with_edges) {
   const int nF = static_cast<int>(topo_.faces.size());
   const double lam = lambda_, inv = 1.0 / (1.0 + lambda_);
   parallel::for_each(nF, parallel::kMinParallelItems, [&](int f) {
@@ -233,8 +250,10 @@ void GaussSolver::assemble_rhs() {
     const Matrix3d Rf = (rotation_[t[0]] + rotation_[t[1]] + rotation_[t[2]]) * (1.0 / 3.0);
     Vector3d d[3];
     for (int k = 0; k < 3; ++k) {
+      d[k] = Rf * slot_rest_[f][k];
+      if (!with_edges) continue;  // the cubic method: plain ARAP's global step
       const double s = topo_.face_edge_sign[f][k];
-      d[k] = (Rf * slot_rest_[f][k] + (lam * slot_weight_[f][k] * s) * edge_star_[topo_.face_edge[f][k]]) * inv;
+      d[k] = (d[k] + (lam * slot_weight_[f][k] * s) * edge_star_[topo_.face_edge[f][k]]) * inv;
     }
     // Corner k is the head of slot k-1 and the tail of slot k.
     for (int k = 0; k < 3; ++k) corner_rhs_[f][k] = d[(k + 2) % 3] - d[k];
@@ -250,38 +269,73 @@ void GaussSolver::assemble_rhs() {
   });
 }
 
-void GaussSolver::step() {
-  const int threads = tuner_.next(parallel::max_threads());
-  const parallel::ScopedThreads scoped(threads);
-  const auto start = Clock::now();
-  auto t0 = start;
-  face_pass();
-  timings_.faces = ms_since(t0);
-  t0 = Clock::now();
-  fit_rotations();
-  timings_.rotations = ms_since(t0);
-  t0 = Clock::now();
-  // The last round's dual update is skipped: duals are re-initialized at the next step and the
-  // global step does not read them.
-  for (int r = 0; r < admm_iterations_; ++r) admm_round(r == 0);
+void GaussSolver::local_global_step() {
+  auto t0 = Clock::now();
+  const bool gauss = method_ == Method::gauss;
+  if (gauss) {
+    face_pass();
+    timings_.faces = ms_since(t0);
+    t0 = Clock::now();
+    fit_rotations();
+    timings_.rotations = ms_since(t0);
+    t0 = Clock::now();
+    // The last round's dual update is skipped: duals are re-initialized at the next step and the
+    // global step does not read them.
+    for (int r = 0; r < admm_iterations_; ++r) admm_round(r == 0);
+  } else {
+    cubic_.covariances(topo_, X_);
+    timings_.faces = ms_since(t0);
+    timings_.rotations = 0;
+    t0 = Clock::now();
+    cubic_.fit(topo_, cubic_lambda_, rotation_, rotation_q_);
+  }
   timings_.admm = ms_since(t0);
   t0 = Clock::now();
-  assemble_rhs();
+  assemble_rhs(gauss);
   timings_.rhs = ms_since(t0);
   t0 = Clock::now();
   laplacian_.solve(X_);
   timings_.solve = ms_since(t0);
+}
+
+void GaussSolver::step() {
+  const int threads = tuner_.next(parallel::max_threads());
+  const parallel::ScopedThreads scoped(threads);
+  const auto start = Clock::now();
+  // The normalized frame's longest bounding-box side is 1.
+  iteration_.advance(X_, rest_, 1.0, [this] {
+    local_global_step();
+    if (keep_volume_) volume_.restore(topo_, X_);
+  });
   ++step_count_;
   tuner_.record(threads, ms_since(start));
   timings_.threads = threads;
+}
+
+int GaussSolver::step_until(double tolerance, int max_steps) {
+  if (max_steps < 0) throw std::invalid_argument("the number of steps must be >= 0");
+  set_tolerance(tolerance);
+  int taken = 0;
+  while (taken < max_steps && !converged()) {
+    step();
+    ++taken;
+  }
+  return taken;
+}
+
+void GaussSolver::set_tolerance(double tolerance) {
+  settings::tolerance.check(tolerance);
+  tolerance_ = tolerance;
 }
 
 void GaussSolver::reset() {
   X_ = rest_;
   // The rotation warm start is state too: a reset run must repeat the first run bit for bit.
   std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
+  if (cubic_ready_) cubic_.reset();
   laplacian_.place_pins(X_);
   step_count_ = 0;
+  iteration_.invalidate();
 }
 
 }  // namespace gauss

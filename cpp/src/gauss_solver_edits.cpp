@@ -1,5 +1,6 @@
-// GaussSolver between steps: styles, parameters and pins. Everything here takes effect at the next
-// step; only set_pins() re-factors (see constrained_laplacian.h).
+// GaussSolver between steps: styles, parameters, pins and the current vertices. Everything here takes
+// effect at the next step; only set_pins() re-factors (see constrained_laplacian.h).
+#include <algorithm>
 #include <cstdint>
 #include <sstream>
 #include <stdexcept>
@@ -22,6 +23,8 @@ void GaussSolver::set_styles(std::vector<PreferenceFunction> styles) {
       throw std::invalid_argument(msg.str());
     }
   styles_ = std::move(styles);
+  update_cubic_styles();
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_style(int index, PreferenceFunction style) {
@@ -31,6 +34,8 @@ void GaussSolver::set_style(int index, PreferenceFunction style) {
     throw std::invalid_argument(msg.str());
   }
   styles_[index] = std::move(style);
+  update_cubic_styles();
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_face_styles(const int64_t* style_of_input_face, int count) {
@@ -48,17 +53,69 @@ void GaussSolver::set_face_styles(const int64_t* style_of_input_face, int count)
     }
   for (size_t f = 0; f < topo_.faces.size(); ++f)
     face_style_[f] = static_cast<int>(style_of_input_face[topo_.input_face[f]]);
+  update_cubic_styles();
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_lambda(double lambda) {
   settings::lambda.check(lambda);
   // Eq. 27: lambda only scales the right-hand side, so the factor stays valid.
   lambda_ = lambda;
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_admm_iterations(int n) {
   settings::admm_iterations.check(n);
   admm_iterations_ = n;
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_keep_volume(bool on) {
+  keep_volume_ = on;
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_method(Method method) {
+  if (method != Method::gauss && method != Method::cubic) throw std::invalid_argument("unknown stylization method");
+  if (method == Method::cubic && !cubic_ready_) {
+    cubic_ = CubicLocalStep(topo_, rest_, edge_weight_);
+    cubic_ready_ = true;
+    update_cubic_styles();
+  }
+  method_ = method;
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_cubic_lambda(double lambda) {
+  settings::cubic_lambda.check(lambda);
+  cubic_lambda_ = lambda;
+  iteration_.invalidate();
+}
+
+void GaussSolver::update_cubic_styles() {
+  if (!cubic_ready_) return;
+  const int nV = topo_.num_vertices;
+  std::vector<double> strength(nV, 0.0);
+  std::vector<int> frame(nV, 0);  // 0: no style (identity), s + 1: style s
+  std::vector<Eigen::Matrix3d> frames(1, Eigen::Matrix3d::Identity());
+  for (const PreferenceFunction& style : styles_) frames.push_back(style.rotation());
+  for (int v = 0; v < nV; ++v) {
+    const int begin = topo_.vertex_corner_start[v], end = topo_.vertex_corner_start[v + 1];
+    if (begin == end) continue;
+    double sum = 0;
+    int best = -1, best_count = 0;
+    for (int i = begin; i < end; ++i) {
+      const int s = face_style_[topo_.vertex_corners[i] / 3];
+      if (s < 0) continue;
+      sum += styles_[s].mu();
+      int count = 0;  // a vertex has a handful of faces: counting by scanning is cheapest
+      for (int j = begin; j < end; ++j) count += face_style_[topo_.vertex_corners[j] / 3] == s;
+      if (count > best_count || (count == best_count && s < best)) best = s, best_count = count;
+    }
+    strength[v] = sum / (end - begin);
+    frame[v] = best + 1;
+  }
+  cubic_.set_vertex_styles(strength, frame, frames);
 }
 
 std::vector<Vector3d> GaussSolver::checked_pin_targets(const std::vector<int64_t>& pinned,
@@ -101,15 +158,27 @@ std::vector<Vector3d> GaussSolver::to_solver_frame(const std::vector<Vector3d>& 
   return out;
 }
 
-void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin_positions) {
+void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress* watcher) {
+  Progress unwatched;
+  Progress& progress = watcher ? *watcher : unwatched;
+  progress.start(SetupPhase::ordering);
+  apply_pins(pinned, pin_positions, progress);
+  progress.finish();
+}
+
+void GaussSolver::apply_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress& progress) {
   std::vector<Vector3d> targets = checked_pin_targets(pinned, pin_positions);
   std::vector<int64_t> internal(pinned.size());
   for (size_t i = 0; i < pinned.size(); ++i) internal[i] = new_of_old_[pinned[i]];
-  laplacian_ = ConstrainedLaplacian(topo_, edge_weight_, rest_, internal, to_solver_frame(targets));
+  // Built aside and then moved in: if the factorization throws (Cancelled, OutOfMemory, not positive
+  // definite), the solver keeps its previous pins and factor.
+  laplacian_ = ConstrainedLaplacian(topo_, edge_weight_, rest_, internal, to_solver_frame(targets), &progress);
   ++factorization_count_;
+  volume_ = VolumeKeeper(topo_, rest_, internal);
   pinned_input_ = pinned;
   pin_targets_ = std::move(targets);
   laplacian_.place_pins(X_);
+  iteration_.invalidate();
 }
 
 void GaussSolver::set_pin_positions(const double* pin_positions, int count) {
@@ -122,6 +191,38 @@ void GaussSolver::set_pin_positions(const double* pin_positions, int count) {
   laplacian_.set_pin_positions(to_solver_frame(targets));
   pin_targets_ = std::move(targets);
   laplacian_.place_pins(X_);
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_vertices(const double* V, int count) {
+  const int nV = topo_.num_vertices;
+  if (count != nV || V == nullptr) {
+    std::ostringstream msg;
+    msg << "vertices must have one row per vertex (" << nV << "), got " << count;
+    throw std::invalid_argument(msg.str());
+  }
+  for (int old = 0; old < nV; ++old) {  // all checks first: a refused call changes nothing
+    const Vector3d p(V[3 * old], V[3 * old + 1], V[3 * old + 2]);
+    if (!p.allFinite()) {
+      std::ostringstream msg;
+      msg << "vertex " << old << " has a NaN or infinite coordinate";
+      throw std::invalid_argument(msg.str());
+    }
+    if (topo_.component[new_of_old_[old]] >= 0 &&
+        !((p - center_).cwiseAbs().maxCoeff() <= settings::max_pin_distance * scale_)) {
+      std::ostringstream msg;
+      msg << "vertex " << old << " is too far from the mesh (more than " << settings::max_pin_distance
+          << " times its size)";
+      throw std::invalid_argument(msg.str());
+    }
+  }
+  for (int old = 0; old < nV; ++old) {
+    const int v = new_of_old_[old];
+    if (topo_.component[v] >= 0) X_[v] = (Vector3d(V[3 * old], V[3 * old + 1], V[3 * old + 2]) - center_) / scale_;
+  }
+  laplacian_.place_pins(X_);
+  std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
+  iteration_.invalidate();
 }
 
 }  // namespace gauss

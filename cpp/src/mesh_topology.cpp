@@ -25,7 +25,11 @@ void build_csr(int rows, const std::vector<int>& keys, std::vector<int>& start, 
 
 }  // namespace
 
-MeshTopology build_mesh_topology(int num_vertices, const int64_t* F, int num_input_faces) {
+MeshTopology build_mesh_topology(int num_vertices, const int64_t* F, int num_input_faces,
+                                 const Progress* progress) {
+  auto check = [progress] {
+    if (progress) progress->check();
+  };
   MeshTopology t;
   t.num_vertices = num_vertices;
   for (int f = 0; f < num_input_faces; ++f) {
@@ -58,6 +62,7 @@ MeshTopology build_mesh_topology(int num_vertices, const int64_t* F, int num_inp
       slot_lo[3 * f + k] = std::min(a, b);
       slot_hi[3 * f + k] = std::max(a, b);
     }
+  check();
   std::vector<int> bucket_start, bucket_slots;
   build_csr(num_vertices, slot_lo, bucket_start, bucket_slots);
   std::vector<int> slot_edge(nS);
@@ -77,6 +82,7 @@ MeshTopology build_mesh_topology(int num_vertices, const int64_t* F, int num_inp
       t.face_edge[f][k] = slot_edge[3 * f + k];
       t.face_edge_sign[f][k] = (t.faces[f][k] < t.faces[f][(k + 1) % 3]) ? 1 : -1;
     }
+  check();
   build_csr(static_cast<int>(t.edges.size()), slot_edge, t.edge_slot_start, t.edge_slots);
 
   std::vector<int> corner_vertex(3 * nF);
@@ -84,6 +90,7 @@ MeshTopology build_mesh_topology(int num_vertices, const int64_t* F, int num_inp
     for (int k = 0; k < 3; ++k) corner_vertex[3 * f + k] = t.faces[f][k];
   build_csr(num_vertices, corner_vertex, t.vertex_corner_start, t.vertex_corners);
 
+  check();
   std::vector<int> parent(num_vertices);
   std::iota(parent.begin(), parent.end(), 0);
   for (const auto& tri : t.faces)

@@ -29,7 +29,7 @@ std::vector<double> solve_unit_weights(const Eigen::MatrixXd& K, const char* wha
 
 }  // namespace
 
-PreferenceFunction::PreferenceFunction(const StyleParams& p) : sigma_(p.sigma), mu_(p.mu) {
+PreferenceFunction::PreferenceFunction(const StyleParams& p) : sigma_(p.sigma), mu_(p.mu), rotation_(p.rotation) {
   settings::sigma.check(p.sigma);
   settings::mu.check(p.mu);
   settings::axis_contribution.check(p.axis_contribution);

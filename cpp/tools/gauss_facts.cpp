@@ -1,6 +1,6 @@
-// Prints the solver's settings table and preset registry (settings.h, presets.h) as JSON: the same
-// facts gauss_core exports as DEFAULTS, LIMITS and PRESETS. The build writes this to the staged
-// add-on's core_facts.json, which the add-on reads when the native module cannot be loaded (another
+// Prints the solver's settings table, its options, preset registry and methods (settings.h, presets.h) as
+// JSON: the same facts gauss_core exports as DEFAULTS, LIMITS, PRESETS and METHODS. The build writes
+// this to the staged add-on's core_facts.json, which the add-on reads when the native module cannot be loaded (another
 // Python, a missing runtime): its properties then still register with the solver's defaults and ranges.
 #include <cstdio>
 #include <string>
@@ -31,7 +31,10 @@ int main(int argc, char** argv) {
   std::printf("{\n  \"DEFAULTS\": {");
   for (const gauss::Setting* s : settings::all)
     std::printf("\"%s\": %s, ", s->name, number(s->default_value, s->integer).c_str());
-  std::printf("\"preset\": \"%s\"},\n  \"LIMITS\": {", settings::default_preset);
+  for (const gauss::Option* o : settings::options)
+    std::printf("\"%s\": %s, ", o->name, o->default_value ? "true" : "false");
+  std::printf("\"preset\": \"%s\", \"method\": \"%s\"},\n  \"LIMITS\": {", settings::default_preset,
+              settings::default_method);
   bool first = true;
   for (const gauss::Setting* s : settings::all) {
     std::printf("%s\"%s\": [%s, %s]", first ? "" : ", ", s->name, number(s->min, s->integer).c_str(),
@@ -42,6 +45,12 @@ int main(int argc, char** argv) {
   first = true;
   for (const std::string& name : gauss::preset_names()) {
     std::printf("%s\"%s\"", first ? "" : ", ", name.c_str());
+    first = false;
+  }
+  std::printf("],\n  \"METHODS\": [");
+  first = true;
+  for (const char* name : settings::method_names) {
+    std::printf("%s\"%s\"", first ? "" : ", ", name);
     first = false;
   }
   std::printf("]\n}\n");

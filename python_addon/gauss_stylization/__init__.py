@@ -18,15 +18,17 @@ bl_info = {
 if "bpy" in locals():  # F8 / script reload: reload the submodules too
     import importlib
     for _module in (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
-                    rest_store, settings_io, session, runs, viewport, directions, orientation, surface,
-                    style_from_data, gauss_sphere, gpu_compat, sphere_overlay, sphere_editing, handles,
-                    handle_tool, operators, slot_operators, ui):
+                    rest_store, settings_io, handles, undo_guard, runs, progress, solver_setup, session,
+                    targets, live_run, scripted_run, viewport, modal_events, directions, orientation, surface,
+                    style_from_data, gauss_sphere, gpu_compat, sphere_overlay, sphere_editing, handle_tool,
+                    operators, slot_operators, ui):
         importlib.reload(_module)
 else:
     from . import (errors, native, fields, schema, properties, mesh_io, styles, validation, output,
-                   rest_store, settings_io, session, runs, viewport, directions, orientation, surface,
-                   style_from_data, gauss_sphere, gpu_compat, sphere_overlay, sphere_editing, handles,
-                   handle_tool, operators, slot_operators, ui)
+                   rest_store, settings_io, handles, undo_guard, runs, progress, solver_setup, session,
+                   targets, live_run, scripted_run, viewport, modal_events, directions, orientation, surface,
+                   style_from_data, gauss_sphere, gpu_compat, sphere_overlay, sphere_editing, handle_tool,
+                   operators, slot_operators, ui)
 
 import bpy
 
@@ -40,16 +42,16 @@ def register():
     properties.register_pointer()
     runs.register_handlers()
     sphere_overlay.register()
-    sphere_editing.register_keymaps()
+    sphere_editing.register()
     handle_tool.register()
 
 
 def unregister():
-    handle_tool.unregister()
-    sphere_editing.unregister_keymaps()
-    sphere_overlay.unregister()
     runs.unregister_handlers()
-    runs.stop_all(bpy.context)
+    runs.stop_all(bpy.context)  # first: a run's end is told to the event handlers below (on_end)
+    handle_tool.unregister()
+    sphere_editing.unregister()
+    sphere_overlay.unregister()
     properties.unregister_pointer()
     for cls in reversed(classes):
         bpy.utils.unregister_class(cls)

@@ -31,6 +31,7 @@ class Live(enum.Enum):
 class Panel(enum.Enum):
     """Where a field's row is drawn (ui.py), in schema order."""
     MAIN = "main"       # Gauss Stylization panel, under Stylize / Reset
+    METHOD = "method"   # Styles sub-panel, above the slot list
     STYLES = "styles"   # Styles sub-panel, under the slot list
     SLOT = "slot"       # Styles sub-panel, the active slot's settings
     SOLVER = "solver"   # Solver sub-panel
@@ -64,14 +65,17 @@ class Field:
     panel:    where its row is drawn (Panel), or None
     text:     the row's label where the panel says it shorter than ``label``
     relevant: owner -> bool; False where the setting has no effect (row hidden, value not checked)
+    shown:    owner -> bool; whether the panel shows the row (default: where it is relevant)
     """
 
     widget = "prop"  # plain layout.prop row
 
-    def __init__(self, name, label, tooltip="", live=Live.NOTHING, panel=None, text=None, relevant=None):
+    def __init__(self, name, label, tooltip="", live=Live.NOTHING, panel=None, text=None, relevant=None,
+                 shown=None):
         self.name, self.label, self.tooltip = name, label, tooltip
         self.live, self.panel, self.text = live, panel, text
         self.relevant = relevant or _always
+        self.shown = shown or self.relevant
 
     def read(self, owner):
         return getattr(owner, self.name)
@@ -183,11 +187,17 @@ class VertexGroup(Text):
 
     def check(self, owner, where):
         group = getattr(owner, self.name)
-        if not group or group in where.known_groups:
+        if not group:
             return
         # A slot has one group, so its name says enough; object-level groups say which setting.
         what = where.owner_name or self.label
-        if group in where.obj.vertex_groups:  # weights are read once, when stylization starts
+        present, known = group in where.obj.vertex_groups, group in where.known_groups
+        if present and known:
+            return
+        if known:  # weights are read once, when stylization starts: deleted during a run
+            raise SettingsError("%s: vertex group '%s' was deleted while Stylize was running; "
+                                "pick another group (or none) to go on" % (what, group))
+        if present:
             raise SettingsError("%s: vertex group '%s' was added after Stylize started; "
                                 "restart Stylize to use it" % (what, group))
         raise SettingsError("%s: there is no vertex group '%s' on '%s'" % (what, group, where.obj.name))

@@ -107,6 +107,25 @@ def _read_corners(mesh):
     return loop_vertex[corner_loop], corner_polygon, sides
 
 
+def read_selected_faces(obj):
+    """Unit normals ((#S,3) float64) and areas ((#S,) float64) of the faces of ``obj`` selected
+    now, leaving out faces without area. In Edit Mode the mesh data lag behind the edit mesh
+    until the mode is left, so the edit mesh is written to them first."""
+    if obj.mode == 'EDIT':
+        obj.update_from_editmode()
+    polygons = obj.data.polygons
+    count = len(polygons)
+    selected = np.zeros(count, bool)
+    normals = np.empty((count, 3), np.float32)
+    areas = np.empty(count, np.float32)
+    polygons.foreach_get("select", selected)
+    polygons.foreach_get("normal", normals.reshape(-1))
+    polygons.foreach_get("area", areas)
+    normals, areas = normals[selected].astype(np.float64), areas[selected].astype(np.float64)
+    usable = (areas > 0) & (np.linalg.norm(normals, axis=1) > 0.5) & np.isfinite(normals).all(axis=1)
+    return normals[usable], areas[usable]
+
+
 def read_group_weights(obj):
     """{vertex group name: (#V,) float32 weights}, for every group of ``obj``.
 

@@ -24,7 +24,8 @@ FACTS_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "core_fact
 # defaults: {name: value} (also "preset": the default preset name);
 # limits:   {name: (min, max)}, inclusive;
 # presets:  preset names; the position of each is its enum number in saved .blend files.
-Facts = namedtuple("Facts", "defaults limits presets")
+# methods:  stylization method names ("gauss", "cubic"), numbered the same way.
+Facts = namedtuple("Facts", "defaults limits presets methods")
 
 def load_failure_message(exc):
     """What the artist reads when ``gauss_core`` cannot be imported: why, and which build fixes it.
@@ -69,6 +70,7 @@ def load_failure_message(exc):
 
 _core = None
 _facts = None
+_ring_presets = None
 
 
 def core():
@@ -92,16 +94,29 @@ def facts():
         except NativeModuleError as exc:
             _facts = read_facts_file(FACTS_FILE, exc)
         else:
-            _facts = _checked_facts(module.DEFAULTS, module.LIMITS, module.PRESETS)
+            _facts = _checked_facts(module.DEFAULTS, module.LIMITS, module.PRESETS, module.METHODS)
     return _facts
 
 
+def ring_presets():
+    """Names of the solver's presets whose style has rings of preferred normals (where a style's
+    axis_contribution acts), asked from the solver itself; None when the module cannot load."""
+    global _ring_presets
+    if _ring_presets is None:
+        try:
+            module = core()
+        except NativeModuleError:
+            return None
+        _ring_presets = frozenset(name for name in module.PRESETS if len(module.Style.preset(name).ring_offsets))
+    return _ring_presets
+
+
 def read_facts_file(path, import_error=None):
-    """Facts from a core_facts.json ({"DEFAULTS": .., "LIMITS": .., "PRESETS": ..})."""
+    """Facts from a core_facts.json ({"DEFAULTS": .., "LIMITS": .., "PRESETS": .., "METHODS": ..})."""
     try:
         with open(path, encoding="utf-8") as handle:
             data = json.load(handle)
-        return _checked_facts(data["DEFAULTS"], data["LIMITS"], data["PRESETS"])
+        return _checked_facts(data["DEFAULTS"], data["LIMITS"], data["PRESETS"], data["METHODS"])
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise NativeModuleError(
             "The add-on cannot read the solver's settings: %s, and %s is unreadable (%s). "
@@ -109,11 +124,13 @@ def read_facts_file(path, import_error=None):
                                                              path, exc)) from exc
 
 
-def _checked_facts(defaults, limits, presets):
+def _checked_facts(defaults, limits, presets, methods):
     limits = {name: (low, high) for name, (low, high) in dict(limits).items()}
     presets = tuple(str(name) for name in presets)
+    methods = tuple(str(name) for name in methods)
     defaults = dict(defaults)
-    if not presets or defaults.get("preset") not in presets or not set(limits) <= set(defaults):
-        raise ValueError("inconsistent solver facts (defaults %r, limits %r, presets %r)"
-                         % (defaults, limits, presets))
-    return Facts(defaults, limits, presets)
+    if (not presets or defaults.get("preset") not in presets or defaults.get("method") not in methods
+            or not set(limits) <= set(defaults)):
+        raise ValueError("inconsistent solver facts (defaults %r, limits %r, presets %r, methods %r)"
+                         % (defaults, limits, presets, methods))
+    return Facts(defaults, limits, presets, methods)

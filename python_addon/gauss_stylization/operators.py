@@ -1,60 +1,52 @@
-"""Operators: Stylize (live modal run or scripted steps) and Reset."""
+"""Operators: Stylize (a live modal run, or scripted steps) and Reset.
+
+Stylize acts on the active object and every other selected mesh (targets.py).
+Invoked from the interface it runs live: the solvers are set up on a worker
+thread (solver_setup.py) while a timer polls them, then each tick steps the
+objects (live_run.py); events go through modal_events.py. From a script, in
+background mode and from the redo panel it runs a fixed number of steps
+(scripted_run.py). Either way a kept run is one undo step.
+"""
 
 import time
 
 import bpy
 from bpy.props import StringProperty
 
-from . import handle_tool, handles, rest_store, runs, schema, settings_io, sphere_editing
-from .errors import NativeModuleError, SettingsError
-from .session import Session, ensure_style_slot
+from . import handles, modal_events, rest_store, runs, schema, scripted_run, settings_io
+from .errors import SettingsError
+from .live_run import LiveRun
+from .progress import ProgressReport
+from .targets import TITLE, plan_objects, report_skipped, stylize_objects, stylize_problem
 from .validation import object_problem, poll_result
-from .viewport import existing_area, over_viewport, redraw_viewports
+from .viewport import existing_area, redraw_viewports
 
 TICK_SECONDS = 0.01
-KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel",  # what modal() does with keys
-             "Drag a pin: move its handle")
+PANEL_SECONDS = 0.25  # how often a live run redraws the sidebar (the viewport: every tick that steps)
+KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel",  # what modal_events does with keys
+             "Drag a pin: move its handle")  # and handle_tool
 HINT = "  |  ".join(KEY_HINTS)
+SETUP_HINT = "Esc: cancel"
+EDITS_UNDO_NAME = "Edits during Stylize"  # the undo step of what was edited during a cancelled run
 _STEPS = schema.field(schema.OBJECT, "iterations")
 
 
-def stylize_problem(context):
-    problem = object_problem(context)
-    if problem is None and runs.is_running(context.active_object):
-        problem = "Stylization is already running on this object"
-    return problem
-
-
-def start_session(operator, context):
-    """Validate and set up a run on the active object; report and return None on failure."""
-    obj = context.active_object
-    others = [o for o in context.selected_objects if o != obj]
-    if others:
-        operator.report({'INFO'}, "Stylizing only the active object '%s' (%d other objects selected)"
-                        % (obj.name, len(others)))
-    added = ensure_style_slot(obj.gauss_stylization)
-    try:
-        session = Session(obj)
-    except (SettingsError, NativeModuleError) as exc:
-        if added:  # a failed start changes nothing, settings included
-            obj.gauss_stylization.styles.remove(0)
-        operator.report({'ERROR'}, str(exc))
-        return None
-    if added:
-        operator.report({'INFO'}, "No style slot yet: added a %s style" % obj.gauss_stylization.styles[0].name)
-    return session
+def _last_registered_operator(context):
+    operators = context.window_manager.operators
+    return operators[-1].as_pointer() if len(operators) else None
 
 
 class OBJECT_OT_gauss_stylize(bpy.types.Operator):
-    """Stylize the active mesh live: one solver step per tick, settings apply at once.
-    Enter/left-click keeps the result, Esc/right-click restores the mesh"""
+    """Stylize the selected meshes live: a solver step per tick, settings apply at once.
+    Enter/left-click keeps the result, Esc/right-click restores the meshes"""
     bl_idname = "object.gauss_stylize"
     bl_label = "Stylize"
     bl_options = {'REGISTER', 'UNDO'}
 
     # The range and default of the object's Script Steps, which a script run defaults to.
     iterations: _STEPS.prop({}, label="Iterations",
-                            tooltip="Solver steps (scripts: defaults to the object's Script Steps setting)")
+                            tooltip="Solver steps, 0: until converged, at most %d (scripts: defaults to each "
+                                    "object's Script Steps setting)" % schema.UNTIL_CONVERGED_CAP)
     # Settings a kept live run ended with, so the redo panel repeats that run (JSON, see settings_io).
     settings_json: StringProperty(options={'HIDDEN', 'SKIP_SAVE'})
     # Where a kept live run left dragged pins, so the redo panel repeats it; scripts may set it too:
@@ -69,53 +61,43 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
     # -- scripted / background / redo: run synchronously ------------------------
 
     def execute(self, context):
-        settings = context.active_object.gauss_stylization
+        objects = stylize_objects(context)
         if self.settings_json:
             try:
-                settings_io.apply_json(settings, self.settings_json)
+                settings_io.apply_objects_json(objects, self.settings_json)
             except (ValueError, KeyError, TypeError) as exc:
                 self.report({'ERROR'}, "Unreadable settings_json (%s): %s" % (type(exc).__name__, exc))
                 return {'CANCELLED'}
-        if not self.properties.is_property_set("iterations"):
-            self.iterations = settings.iterations
-        session = start_session(self, context)
-        if session is None:
+        steps = self.iterations if self.properties.is_property_set("iterations") else None
+        if steps is None:
+            self.iterations = objects[0].gauss_stylization.iterations
+        planned = plan_objects(self, objects)
+        if planned is None:
             return {'CANCELLED'}
-        try:
-            if self.pin_targets:
-                handles.apply_targets_json([session], self.pin_targets)
-            if self.iterations:
-                session.step(self.iterations)
-        except SettingsError as exc:
-            session.cancel()
-            self.report({'ERROR'}, str(exc))
-            return {'CANCELLED'}
-        except (ValueError, RuntimeError) as exc:
-            session.cancel()
-            self.report({'ERROR'}, "The solver failed: %s" % exc)
-            return {'CANCELLED'}
-        session.keep()
-        return {'FINISHED'}
+        return scripted_run.run(self, context, planned, steps, self.pin_targets)
 
     # -- interactive: modal on a timer -------------------------------------------
 
     def invoke(self, context, event):
         if context.window is None or bpy.app.background:
             return self.execute(context)  # no window to run live in
-        session = start_session(self, context)
-        if session is None:
+        planned = plan_objects(self, stylize_objects(context))
+        if planned is None:
             return {'CANCELLED'}
-        self._session = session
+        self.live = LiveRun(planned)
+        self.scratch = {}  # event handlers' state (modal_events)
+        self.notes = {}    # event handlers' status texts (modal_events)
+        self._handlers_told = False  # modal_events.run_ended called
         # The area's address only, never a Python reference to it: see viewport.existing_area.
         self._area_pointer = context.area.as_pointer() if context.area else None
-        self._message = "starting"
-        self._tick_ms = []
-        self._handles = handle_tool.HandleTool()
+        self._operator_at_start = _last_registered_operator(context)
+        self._progress = ProgressReport(context, TITLE, status=False)
+        self._panels_drawn = 0.0
         window_manager = context.window_manager
         self._timer = window_manager.event_timer_add(TICK_SECONDS, window=context.window)
         window_manager.modal_handler_add(self)
-        runs.start(context.active_object, self)
-        self._show_status(context)
+        runs.start(planned.objects, self)
+        self.show_status(context)
         return {'RUNNING_MODAL'}
 
     def modal(self, context, event):
@@ -124,122 +106,154 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             # handler is still there until it returns, and the event is not ours.
             return {'CANCELLED', 'PASS_THROUGH'}
         try:
-            return self._handle_event(context, event)
+            if event.type == 'TIMER':
+                return self._tick(context)
+            return modal_events.dispatch(self, context, event)
         except Exception as exc:  # never leave a half-done run or a dangling timer behind
             self.stop(context, keep=False)
-            self.report({'ERROR'}, "Stylize stopped, mesh restored: %s" % exc)
+            self.report({'ERROR'}, "Stylize stopped, meshes restored: %s" % exc)
             return {'CANCELLED'}
 
-    def _handle_event(self, context, event):
-        if event.type == 'TIMER':
-            if not self._tick(context):
-                return {'CANCELLED'}
-            return {'PASS_THROUGH'}  # other operators may own this timer event
-        taken = self._handles.event(context, event, [self._session])  # pin handles: press, drag, drop
-        if taken is not None:
-            self._show_status(context)
-            return taken
-        if event.value != 'PRESS':
-            return {'PASS_THROUGH'}
-        if sphere_editing.claims(context, event):
-            return {'PASS_THROUGH'}  # a press on the Gauss sphere edits it (sphere_editing)
-        if event.type == 'ESC' or (event.type == 'RIGHTMOUSE' and over_viewport(context, event)):
-            self.stop(context, keep=False)
-            return {'CANCELLED'}
-        if event.type in {'RET', 'NUMPAD_ENTER'} or (
-                event.type == 'LEFTMOUSE' and over_viewport(context, event)):
-            if not self._session.object_alive():  # deleted since the last tick: nothing to keep
-                self._stop_object_gone(context)
-                return {'CANCELLED'}
-            self.stop(context, keep=True)
-            return {'FINISHED'}
-        if event.type == 'TAB' or (event.type == 'Z' and (event.ctrl or event.oskey)):
-            return {'RUNNING_MODAL'}  # no mode switch or undo under a live run
-        return {'PASS_THROUGH'}  # navigation and the sidebar keep working
+    @property
+    def preparing(self):
+        return self.live.preparing
 
     def _tick(self, context):
-        """One step with the current settings. False if the run had to stop."""
-        session = self._session
-        if not session.object_alive():
-            self._stop_object_gone(context)
-            return False
+        live = self.live
+        if live.preparing:
+            if not live.setup.done:
+                self._progress.update(live.setup.fraction, live.setup.text())
+                self._redraw(context)
+                self.show_status(context)
+                return {'PASS_THROUGH'}
+            self._progress.end()
+            self._progress = None
+            if context.mode != 'OBJECT':  # nothing was changed yet: cancel rather than keep
+                self.stop(context, keep=False)
+                self.report({'WARNING'}, "Stylize cancelled: the object left Object Mode while it was preparing")
+                return {'CANCELLED'}
+            report_skipped(self, live.finish_setup(), any_left=bool(live.sessions))
+            if not live.sessions:
+                self.stop(context, keep=False)
+                return {'CANCELLED'}
         if context.mode != 'OBJECT':
             # Edit Mode would overwrite a restore on exit, so keep what is there
             # and let Reset (which has the start coordinates) take it back.
             self.stop(context, keep=True)
             self.report({'WARNING'}, "Stylize stopped: the object left Object Mode. "
                                      "Use Reset in Object Mode to get the original back")
-            return False
-        start = time.perf_counter()
-        problem = session.sync_settings()
-        if problem is None:
-            session.step()
-            redraw_viewports(context)
-            self._tick_ms.append((time.perf_counter() - start) * 1000.0)
-        self._message = "paused: " + problem if problem else None
-        self._show_status(context)
-        return True
+            return {'FINISHED'}
+        outcome = live.tick()
+        for session, why in outcome.stopped:
+            self.report({'WARNING'}, "Stylize stopped on '%s', its mesh restored: %s" % (session.name, why))
+        for name, why in outcome.paused:
+            self.report({'WARNING'}, "Stylize paused on '%s': %s" % (name, why))
+        if not live.sessions:
+            self.stop(context, keep=False)
+            return {'CANCELLED'}
+        self._show_busy(context)
+        if outcome.stepped or time.monotonic() - self._panels_drawn > PANEL_SECONDS:
+            # Nothing stepped (converged, paused, waiting for pins): a refresh a few times a second.
+            self._redraw(context)
+            self.show_status(context)
+        return {'PASS_THROUGH'}  # other operators may own this timer event
+
+    def _redraw(self, context):
+        """The viewports at every tick, their sidebars (steps, progress) a few times a second."""
+        now = time.monotonic()
+        sidebars = now - self._panels_drawn > PANEL_SECONDS
+        if sidebars:
+            self._panels_drawn = now
+        redraw_viewports(context, sidebars=sidebars)
+
+    def _show_busy(self, context):
+        """Progress of new pins being prepared (shown, like the set-up's, after half a second)."""
+        busy = self.live.busy()
+        if busy is not None:
+            self._progress = self._progress or ProgressReport(context, TITLE, status=False)
+            self._progress.update(busy.fraction, busy.text())
+        elif self._progress is not None:
+            self._progress.end()
+            self._progress = None
+
+    def end(self, context, keep):
+        """End the run from an event (see modal_events): keep the results or restore every mesh.
+        Returns what modal() returns."""
+        if keep and not self.live.preparing:
+            for name in self.live.drop_gone():  # deleted since the last tick: nothing to keep
+                self.report({'WARNING'}, "Stylize stopped on '%s': the object was deleted or its mesh "
+                                         "replaced" % name)
+            if self.live.sessions:
+                self.stop(context, keep=True)
+                return {'FINISHED'}
+        edited = self.live.edited() or _last_registered_operator(context) != self._operator_at_start
+        self.stop(context, keep=False)
+        if edited:
+            # Undo was off during the run: record what was edited meanwhile as one step
+            # (the meshes are back as they were, so no cancelled shape is in it).
+            bpy.ops.ed.undo_push(message=EDITS_UNDO_NAME)
+        return {'CANCELLED'}
 
     def stop(self, context, keep):
-        """End the run: keep the result (callers check the object is alive) or restore.
+        """End the run: keep the results (callers drop deleted objects first) or restore.
 
         Runs once: Blender may still call cancel() after an undo or disabling the
         add-on ended the run, and removing a removed timer reads freed memory.
         """
         if self._timer is None:
             return
-        self._handles.drop()
-        session = self._session
+        live = self.live
+        if not self._handlers_told:
+            self._handlers_told = True
+            try:
+                modal_events.run_ended(self, context, keep)
+            except Exception as exc:  # a feature's clean-up must not keep the meshes from being restored
+                self.report({'WARNING'}, "Stylize: ending a handler failed: %s" % exc)
         if keep:  # should this raise, the run is still on and modal() cancels it
-            session.keep()
-            self.iterations = session.steps
-            self.settings_json = settings_io.to_json(session.obj.gauss_stylization)
-            self.pin_targets = handles.targets_json([session])
+            live.keep()
+            self.iterations = min(live.steps, _STEPS.hard[1])
+            self.settings_json = settings_io.objects_to_json([s.obj for s in live.sessions])
+            self.pin_targets = handles.targets_json(live.sessions)
         try:
             if not keep:
-                session.cancel()  # restores whatever still exists, never freed data
-        finally:  # even if restoring failed: leave no timer and no stale entry behind
+                live.cancel()  # restores whatever still exists, never freed data
+        finally:  # even if restoring failed: leave no timer, no stale entry and undo back on
             context.window_manager.event_timer_remove(self._timer)
             self._timer = None
             runs.forget(self)
-            self._show_status(context, clear=True)
+            if self._progress is not None:
+                self._progress.end()
+            self.show_status(context, clear=True)
             redraw_viewports(context)
 
-    def _stop_object_gone(self, context):
-        self.stop(context, keep=False)
-        self.report({'WARNING'}, "Stylize stopped: the object was deleted or its mesh replaced")
-
     def cancel(self, context):
-        # Blender cancels a modal operator when e.g. its window closes or a file loads.
+        # Blender cancels a modal operator when e.g. its window closes, a file loads or it quits.
         self.stop(context, keep=False)
 
-    def _show_status(self, context, clear=False):
-        text = None if clear else self._status_text()
+    def show_status(self, context, clear=False):
+        """Write the header and status bar text (event handlers call it after changing notes)."""
+        text = None
+        if not clear:
+            notes = "".join("  |  " + note for note in self.notes.values() if note)
+            text = self.live.status_text() + notes + "  |  " + (SETUP_HINT if self.live.preparing else HINT)
         area = existing_area(self._area_pointer)
         if area is not None:
             area.header_text_set(text)
         if context.workspace is not None:
             context.workspace.status_text_set(text)
 
-    def _status_text(self):
-        session = self._session
-        text = "Gauss Stylize: step %d" % session.steps
-        if session.step_ms:
-            text += "  |  %.1f ms/step, %.1f ms/tick" % (session.step_ms[-1], self._tick_ms[-1])
-        if self._message:
-            text += "  |  " + self._message
-        dragging = self._handles.hint()
-        if dragging:
-            return text + "  |  " + dragging
-        return text + "  |  " + HINT
-
     @property
     def tick_ms(self):
-        return list(self._tick_ms)
+        return list(self.live.tick_ms)
 
     @property
     def session(self):
-        return self._session
+        """The first object's session (the active object's, when it could be stylized)."""
+        return self.live.sessions[0] if self.live.sessions else None
+
+    @property
+    def sessions(self):
+        return list(self.live.sessions)
 
 
 class OBJECT_OT_gauss_stylize_reset(bpy.types.Operator):
@@ -250,7 +264,9 @@ class OBJECT_OT_gauss_stylize_reset(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        problem = stylize_problem(context)
+        problem = object_problem(context)
+        if problem is None and runs.is_running(context.active_object):
+            problem = "Stylization is already running on this object"
         if problem is None and not rest_store.has_capture(context.active_object.data):
             problem = "Nothing to reset: this mesh has not been stylized"
         return poll_result(cls, problem)

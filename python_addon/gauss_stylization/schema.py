@@ -4,8 +4,8 @@ The PropertyGroups (properties.py), the JSON round-trip and the settings writer
 (settings_io.py), the validation before a run (validation.py), what a live run
 does when a setting changes (session.py) and the panel rows (ui.py) are all
 derived from these tables. Defaults and hard ranges of what the solver owns
-(lam, sigma, mu, axis_contribution, admm_iterations) and the preset registry
-come from the solver (native.facts()), never from here.
+(lam, sigma, mu, axis_contribution, admm_iterations, cubic_lambda, tolerance), the
+preset registry and the methods come from the solver (native.facts()), never from here.
 
 A new setting is one line in its table (kinds: fields.py), plus its use in the
 solver call for slot fields (styles.make_style); see python_addon/README.md.
@@ -20,6 +20,9 @@ FACTS = native.facts()
 CUSTOM = 'CUSTOM'
 REGION_THRESHOLD = 0.5  # a face is in a slot's region when its vertex weights average above this
 PIN_THRESHOLD = 0.5     # a vertex is pinned when its pin-group weight is above this
+# A scripted run of 0 steps runs until converged; it stops after this many steps if it has not by then
+# (a mesh that keeps changing, a Tolerance below what the shape reaches), so a script always ends.
+UNTIL_CONVERGED_CAP = 5000
 CUSTOM_NUMBER = 99  # enum number of Custom in saved files; presets are numbered 0, 1, ... in PRESETS order
 
 
@@ -44,6 +47,27 @@ def _preset_items():
 DEFAULT_PRESET = preset_identifier(FACTS.defaults["preset"])
 DEFAULT_PRESET_LABEL = preset_label(FACTS.defaults["preset"])
 
+_METHOD_TIPS = {
+    "gauss": "Gauss Stylization (Kohlbrenner et al. 2021): faces turn towards each slot's Style",
+    "cubic": "Cubic Stylization (Liu & Jacobson 2019): surfaces turn towards the axes of a cube; a slot's "
+             "Mu scales Cubic Lambda in its region and its Rotation turns the cube, its Style is not used",
+}
+CUBIC = preset_identifier("cubic")
+
+
+def _method_items():
+    # Saved files store the number: method i of the solver's list is number i (append only).
+    return [(preset_identifier(name), name.title(), _METHOD_TIPS.get(name, ""), number)
+            for number, name in enumerate(FACTS.methods)]
+
+
+def is_cubic(settings):
+    return settings.method == CUBIC
+
+
+def _not_cubic(settings):
+    return settings.method != CUBIC
+
 
 def _is_custom(slot):
     return slot.preset == CUSTOM
@@ -51,6 +75,12 @@ def _is_custom(slot):
 
 def _not_custom(slot):
     return slot.preset != CUSTOM
+
+
+def _has_rings(slot):
+    """Does the slot's preset have rings (Cylinder, Cone, ...: whatever the solver says)?"""
+    rings = native.ring_presets()
+    return slot.preset != CUSTOM and (rings is None or slot.preset.lower() in rings)
 
 
 # GaussNormal: one preferred normal of a Custom style.
@@ -71,8 +101,10 @@ SLOT = (
           soft=(0.0, 10.0), live=Live.STYLES, panel=Panel.SLOT),
     Euler("orientation", "Orientation", "Rotation of the preferred normals (object space)",
           live=Live.STYLES, panel=Panel.SLOT, text="Rotation"),
+    # Checked for every preset (a value saved with a cube must be usable once it is a cone),
+    # shown only where it acts.
     Float("axis_contribution", "Axis Contribution", "Weight of the axis normals for presets that have them",
-          live=Live.STYLES, panel=Panel.SLOT, text="Axis Weight", relevant=_not_custom),
+          live=Live.STYLES, panel=Panel.SLOT, text="Axis Weight", relevant=_not_custom, shown=_has_rings),
     VertexGroup("vertex_group", "Vertex Group", "Region of this style (faces whose vertex weights average "
                 "above %g); empty means the whole mesh" % REGION_THRESHOLD,
                 live=Live.REGIONS, panel=Panel.SLOT, text="Region"),
@@ -83,11 +115,20 @@ SLOT = (
 
 # GaussSettings: Object.gauss_stylization.
 OBJECT = (
+    Choice("method", "Method", "How the mesh is stylized", _method_items(),
+           preset_identifier(FACTS.defaults["method"]), live=Live.SETTER, panel=Panel.METHOD),
+    Float("cubic_lambda", "Cubic Lambda", "How cubic the shape becomes versus keeping its shape (0.2: the "
+          "Cubic Stylization paper's default)", soft=(0.0, 2.0), live=Live.SETTER, panel=Panel.METHOD,
+          text="Lambda", relevant=is_cubic),
     Float("lam", "Lambda", "How strongly faces follow their style versus keeping their shape",
-          soft=(0.0, 20.0), live=Live.SETTER, panel=Panel.SOLVER),
+          soft=(0.0, 20.0), live=Live.SETTER, panel=Panel.SOLVER, relevant=_not_cubic),
     Int("admm_iterations", "ADMM Iterations", "Inner iterations per solver step",
-        live=Live.SETTER, panel=Panel.SOLVER),
-    Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode",
+        live=Live.SETTER, panel=Panel.SOLVER, relevant=_not_cubic),
+    Float("tolerance", "Tolerance", "A run has converged, and stops, when a step moves the mesh by less than "
+          "this fraction of how far it has moved from its original shape", soft=(1e-4, 0.1), live=Live.SETTER,
+          panel=Panel.SOLVER),
+    Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode; "
+        "0: until converged (Tolerance), at most %d steps" % UNTIL_CONVERGED_CAP,
         default=100, hard=(0, 100000), panel=Panel.SOLVER),
     Choice("output", "Output", "Where the stylized coordinates go",
            (('MESH', "Mesh", "Move the vertices of the mesh itself", 0),

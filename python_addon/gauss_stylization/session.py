@@ -1,8 +1,15 @@
-"""One stylization run of one object: solver, buffers and output target.
+"""One stylization run of one object: what it reads, its solver, buffers and output target.
 
-Used by the modal operator (one ``step()`` per timer tick), by the scripted
-operator (``step(n)`` once) and by the tick benchmark. Nothing here touches
-the UI. Set-up validates everything before the mesh is written, so a failed
+A run is set up in two parts. ``Plan(obj)`` reads and checks everything it
+needs from Blender on the main thread; a bad setting or mesh raises
+SettingsError there, before anything expensive happens. ``Plan.build_solver()``
+then sets up the solver from those arrays alone (no Blender data), so
+solver_setup.py may run it on another thread while Blender stays responsive.
+``Session(plan, solver)`` finishes on the main thread and makes the first change
+to the object. ``Session(obj)`` does all three at once (scripts, benchmarks).
+
+Used by the live run (one ``step()`` per timer tick), by the scripted operator
+(``step(n)``) and by the tick benchmark. Nothing here touches the UI. A failed
 start leaves the object as it was.
 """
 
@@ -14,7 +21,13 @@ from . import mesh_io, native, output, rest_store, schema, styles
 from .errors import SettingsError
 from .fields import Live, changes
 from .settings_io import add_slot, to_dict
-from .validation import check_coordinates, check_object, check_settings
+from .solver_setup import PinsSetup
+from .validation import check_coordinates, check_object, check_pins, check_settings
+
+# A result outside the rest mesh's coordinate range widened by this many mesh sizes is treated
+# as a blow-up: the solver keeps outputs within a few sizes, so this only catches a defect.
+MAX_EXTENT = 100.0
+
 
 def ensure_style_slot(settings):
     """An artist must be able to press Stylize right away: add a slot of the default preset
@@ -26,9 +39,23 @@ def ensure_style_slot(settings):
     return False
 
 
-class Session:
+def _solver_error(exc):
+    return SettingsError("The solver cannot handle this mesh or setting: %s" % exc)
+
+
+class Plan:
+    """Everything a run of ``obj`` needs from Blender, read and checked (main thread).
+
+    arrays:  mesh_io.MeshArrays (coordinates, loop triangles, corners)
+    weights: {vertex group name: (#V,) float32}, read once
+    applied: the settings (settings_io.to_dict) the solver is built with
+    pins, styles, face_styles: the solver's inputs derived from them
+    target:  output target, snapshot taken, nothing written yet
+    """
+
     def __init__(self, obj):
         self.obj = obj
+        self.name = obj.name  # for messages, also once the object is gone
         self.mesh = obj.data
         self.gauss_core = native.core()
         check_object(obj)
@@ -37,43 +64,109 @@ class Session:
         self.weights = mesh_io.read_group_weights(obj)
         settings = obj.gauss_stylization
         check_settings(obj, settings, self.weights)
-        self.target = output.make_target(obj, self.arrays.num_vertices)
-        # The settings the solver runs with (settings_io.to_dict); a tick compares them
-        # with the panel's to find what changed, and each change does what its field's
-        # Live says (schema.py): so no setting can be missed.
+        # The settings the solver runs with; a tick compares them with the panel's to find
+        # what changed, and each change does what its field's Live says (schema.py).
         self.applied = to_dict(settings)
-        self.solver = self._make_solver(settings)
-        # The solver writes its result straight into this buffer every step.
-        self.result = np.empty_like(self.arrays.coords)
-        self.finite = np.empty(self.result.shape, bool)  # preallocated: a tick allocates nothing
-        self.steps = 0
-        self.step_ms = []
-        self.target.prepare()  # first change to the object: everything above succeeded
-
-    def _make_solver(self, settings):
-        pins = styles.pinned_vertices(self.weights, settings.pin_group)
+        self.pins = styles.pinned_vertices(self.weights, settings.pin_group)
+        check_pins(obj, self.pins, self.arrays.triangles)
         try:
-            solver = self.gauss_core.Solver(
-                self.arrays.coords, self.arrays.triangles, pinned=pins if len(pins) else None,
-                **{field.name: field.read(settings) for field in schema.SOLVER_SETTERS})
-            solver.set_styles(styles.make_styles(self.gauss_core, settings.styles))
-            solver.set_face_styles(self._face_styles(settings))
-        except (ValueError, TypeError, RuntimeError) as exc:
-            raise SettingsError("The solver cannot handle this mesh or setting: %s" % exc) from exc
-        return solver
+            self.styles = styles.make_styles(self.gauss_core, settings.styles)
+        except (ValueError, TypeError) as exc:
+            raise _solver_error(exc) from exc
+        self.face_styles = self.face_styles_for(settings)
+        self.solver_options = {field.name: field.read(settings) for field in schema.SOLVER_SETTERS}
+        self.target = output.make_target(obj, self.arrays.num_vertices)
 
-    def _face_styles(self, settings):
+    def face_styles_for(self, settings):
         groups = [slot.vertex_group for slot in settings.styles]
         return styles.face_styles(self.arrays, self.weights, groups, settings.uncovered)
 
+    @property
+    def num_vertices(self):
+        return self.arrays.num_vertices
+
+    def changed(self):
+        """Why the object is no longer what this plan read (None if it still is). The interface stays
+        usable while a solver is set up on another thread, so it may have been edited or deleted."""
+        try:
+            if self.obj.data != self.mesh or len(self.mesh.vertices) != self.num_vertices:
+                return "its mesh was replaced or edited while Stylize was preparing; press Stylize again"
+        except ReferenceError:
+            return "it was deleted while Stylize was preparing"
+        now = np.empty_like(self.arrays.coords)
+        mesh_io.read_base_coords(self.mesh, now)
+        if not np.array_equal(now, self.arrays.coords):
+            return "its mesh was edited while Stylize was preparing; press Stylize again"
+        return None
+
+    def build_solver(self, progress=None):
+        """The solver set up for this plan. Reads no Blender data, so it may run on any thread.
+
+        progress: a gauss_core.Progress to watch (and cancel) the set-up from another thread;
+        a cancelled set-up raises gauss_core.Cancelled, which is passed on."""
+        options = dict(self.solver_options)
+        if progress is not None:
+            options["progress"] = progress
+        cancelled = getattr(self.gauss_core, "Cancelled", ())
+        try:
+            return self.gauss_core.Solver(self.arrays.coords, self.arrays.triangles,
+                                          pinned=self.pins if len(self.pins) else None, **options)
+        except cancelled:
+            raise
+        except (ValueError, TypeError, RuntimeError, MemoryError) as exc:
+            raise _solver_error(exc) from exc
+
+
+class Session:
+    def __init__(self, plan, solver=None, background_pins=False):
+        """plan: a Plan, or an object to plan for now; solver: plan.build_solver()'s result,
+        built here when not given; background_pins: a Pin Group change re-factors on a worker
+        thread (solver_setup.PinsSetup) while the session waits, instead of inside sync_settings()."""
+        if not isinstance(plan, Plan):
+            plan = Plan(plan)
+        if solver is None:
+            solver = plan.build_solver()
+        self.plan = plan
+        self.obj, self.mesh, self.gauss_core = plan.obj, plan.mesh, plan.gauss_core
+        self.arrays, self.weights, self.target = plan.arrays, plan.weights, plan.target
+        self.applied = plan.applied
+        try:
+            solver.set_styles(plan.styles)
+            solver.set_face_styles(plan.face_styles)
+        except (ValueError, TypeError) as exc:
+            raise _solver_error(exc) from exc
+        self.solver = solver
+        # The solver writes its result straight into this buffer every step.
+        self.result = np.empty_like(self.arrays.coords)
+        # Coordinates beyond these (MAX_EXTENT mesh sizes around the rest mesh) mean a blow-up.
+        lower, upper = float(self.arrays.coords.min()), float(self.arrays.coords.max())
+        margin = MAX_EXTENT * max(upper - lower, 1e-30)
+        self.bounds = (lower - margin, upper + margin)
+        self.steps = 0
+        self.step_ms = []
+        self.background_pins = background_pins and hasattr(self.gauss_core, "Progress")
+        self.pins_setup = None         # a PinsSetup running or not yet looked at
+        self._pin_group_before = None  # applied["pin_group"] before it
+        self.target.prepare()  # first change to the object: everything above succeeded
+
     # -- running ---------------------------------------------------------------
 
+    @property
+    def busy(self):
+        """The PinsSetup the solver is busy with (no step until it is done), or None."""
+        setup = self.pins_setup
+        return setup if setup is not None and not setup.done else None
+
     def sync_settings(self):
-        """Send changed settings to the solver. Returns None, or why it cannot run now."""
+        """Send changed settings to the solver. Returns None, or why it cannot run now.
+        Not while ``busy``."""
+        problem = self._finish_pins()
+        if problem is not None:
+            return problem
         settings = self.obj.gauss_stylization
         wanted = to_dict(settings)
         changed = changes(schema.OBJECT, self.applied, wanted)
-        if changed:
+        if changed or self._group_deleted():
             try:
                 check_settings(self.obj, settings, self.weights)
                 self._apply(settings, changed)
@@ -84,13 +177,30 @@ class Session:
         self.applied = wanted
         return None
 
+    def _group_deleted(self):
+        """Is a vertex group the applied settings use gone from the object? (A few name look-ups.)"""
+        groups = self.obj.vertex_groups
+        if self.applied["pin_group"] and self.applied["pin_group"] not in groups:
+            return True
+        return any(slot["vertex_group"] and slot["vertex_group"] not in groups for slot in self.applied["styles"])
+
     def _apply(self, settings, changed):
         solver = self.solver
-        new_styles = faces = None
+        new_styles = faces = pins = None
         if Live.STYLES in changed:
             new_styles = styles.make_styles(self.gauss_core, settings.styles)
         if Live.REGIONS in changed:
-            faces = self._face_styles(settings)
+            faces = self.plan.face_styles_for(settings)
+        if Live.PINS in changed:
+            pins = styles.pinned_vertices(self.weights, settings.pin_group)
+            check_pins(self.obj, pins, self.arrays.triangles)
+        if Live.SETTER in changed:
+            # Only those that changed: setting one ends the solver's converged state (Tolerance
+            # excepted, which only changes what `converged` says), so a run resumes only when it should.
+            for field in schema.SOLVER_SETTERS:
+                value = field.read(settings)
+                if value != self.applied[field.name]:
+                    setattr(solver, field.name, value)
         # Never let face indices point past the style list, in either order.
         if new_styles is not None and len(new_styles) >= len(self.applied["styles"]):
             solver.set_styles(new_styles)
@@ -99,28 +209,74 @@ class Session:
             solver.set_face_styles(faces)
         if new_styles is not None:
             solver.set_styles(new_styles)
-        if Live.PINS in changed:
-            solver.set_pins(styles.pinned_vertices(self.weights, settings.pin_group))
-        if Live.SETTER in changed:
-            for field in schema.SOLVER_SETTERS:
-                setattr(solver, field.name, field.read(settings))
+        if pins is None:
+            return
+        if self.background_pins:  # last: the solver is not to be touched until it is done
+            self._pin_group_before = self.applied["pin_group"]
+            self.pins_setup = PinsSetup(self, pins)
+        else:
+            solver.set_pins(pins)
+
+    def _finish_pins(self):
+        """Once a PinsSetup is done: None, or why it failed (the solver keeps its old pins, and the
+        next sync tries the Pin Group again)."""
+        setup, self.pins_setup = self.pins_setup, None
+        if setup is None or not isinstance(setup.results[0], Exception):
+            return None
+        self.applied = dict(self.applied, pin_group=self._pin_group_before)
+        return str(setup.results[0])
+
+    def _stop_pins(self):
+        if self.pins_setup is not None:
+            self.pins_setup.cancel()
+            self.pins_setup = None
+
+    @property
+    def converged(self):
+        """Did the last step move the mesh by less than the Tolerance, with nothing changed since?
+        (The solver forgets it at any change of settings, styles or pins.)"""
+        return self.solver.converged
+
+    @property
+    def reldv(self):
+        """The last step's relative change (inf before the first step and after a change)."""
+        return self.solver.last_reldv
 
     def step(self, count=1):
         """Run ``count`` solver iterations and write the result to the target."""
         start = time.perf_counter()
         self.solver.step(count)
+        self._stepped(count, start)
+
+    def step_until(self, max_steps):
+        """Step until converged (the solver's tolerance, the object's Tolerance), at most ``max_steps``
+        times; write the result. Returns the number of steps taken."""
+        start = time.perf_counter()
+        count = self.solver.step_until(None, max_steps)
+        if count:
+            self._stepped(count, start)
+        return count
+
+    def _stepped(self, count, start):
         self.step_ms.append((time.perf_counter() - start) * 1000.0 / max(count, 1))
         self.steps += count
         self.solver.vertices_into(self.result)
-        if not np.isfinite(self.result, out=self.finite).all():  # never write NaN into the artist's mesh
-            raise SettingsError("The solver produced invalid positions (the mesh may have "
-                                "degenerate faces); try a larger Lambda or fix the mesh")
+        # Never write NaN or a blown-up shape into the artist's mesh: two reductions, which
+        # propagate NaN and allocate nothing.
+        low, high = self.result.min(), self.result.max()
+        if not (self.bounds[0] <= low and high <= self.bounds[1]):
+            raise SettingsError(
+                "The solver produced invalid positions after step %d (%s), so Stylize stopped. "
+                "This is a defect of the solver, not of your settings: please report it with the mesh"
+                % (self.steps, "not finite" if not (np.isfinite(low) and np.isfinite(high))
+                   else "more than %g times the mesh's size away" % MAX_EXTENT))
         self.target.write(self.result)
 
     # -- ending ----------------------------------------------------------------
 
     def keep(self):
         """Keep the result; remember the start coordinates for the Reset operator."""
+        self._stop_pins()  # a Pin Group change still being prepared never reached the result
         rest_store.capture(self.mesh, self.arrays.coords, self.target.kind)
 
     def cancel(self):
@@ -130,6 +286,7 @@ class Session:
         another object may share it, and undo reuses the mesh as it is in memory.
         A freed mesh, or one whose vertex count changed, is left alone.
         """
+        self._stop_pins()
         if self.mesh_alive():
             self.target.restore()
 
@@ -144,3 +301,11 @@ class Session:
             return self.obj.data == self.mesh and self.mesh_alive()
         except ReferenceError:  # the object or mesh was deleted while running
             return False
+
+    @property
+    def name(self):
+        """The object's name now, or the one it had when the run started if it is gone."""
+        try:
+            return self.obj.name
+        except ReferenceError:
+            return self.plan.name

@@ -32,6 +32,28 @@ def apply_json(settings, text):
     write_all(schema.OBJECT, settings, json.loads(text), complete=True)
 
 
+def objects_to_json(objects):
+    """The settings of the objects of a run: to_json's text for one object (the form a script
+    passes), {"objects": {name: settings}} for several."""
+    if len(objects) == 1:
+        return to_json(objects[0].gauss_stylization)
+    return json.dumps({"objects": {obj.name: to_dict(obj.gauss_stylization) for obj in objects}})
+
+
+def apply_objects_json(objects, text):
+    """Apply objects_to_json's text: one object's settings go to the first of ``objects``,
+    named ones to the objects of those names (names not among ``objects`` are ignored)."""
+    data = json.loads(text)
+    if isinstance(data, dict) and set(data) == {"objects"}:
+        by_name = {obj.name: obj for obj in objects}
+        for name, settings in dict(data["objects"]).items():
+            if name in by_name:
+                write_all(schema.OBJECT, by_name[name].gauss_stylization, settings, complete=True)
+        return
+    if objects:
+        write_all(schema.OBJECT, objects[0].gauss_stylization, data, complete=True)
+
+
 def apply_dict(settings, data):
     """Set the settings named in ``data`` (the others keep their values).
 

@@ -5,9 +5,14 @@ Both lists work alike: a collection, its owner and the owner's active index.
 it can), ``_AddItem`` and ``_RemoveActive`` what it does to it.
 """
 
-import bpy
-from bpy.props import EnumProperty
+import math
 
+import bpy
+from bpy.props import EnumProperty, FloatProperty
+
+from . import native
+from .errors import NativeModuleError
+from .mesh_io import read_selected_faces
 from .schema import CUSTOM
 from .styles import active_slot
 from .validation import poll_result
@@ -123,20 +128,30 @@ class OBJECT_OT_gauss_normal_remove(_NormalList, _RemoveActive, bpy.types.Operat
 
 
 class OBJECT_OT_gauss_normals_from_faces(_NormalList, bpy.types.Operator):
-    """Add the normals of the faces selected in Edit Mode to the active custom style"""
+    """Add the directions of the selected faces to the active custom style (faces with
+    near-parallel normals give one direction, their area-weighted mean)"""
     bl_idname = "object.gauss_normals_from_faces"
     bl_label = "From Selected Faces"
 
+    merge_angle: FloatProperty(
+        name="Merge Angle", subtype='ANGLE', default=math.radians(5.0), min=0.0, max=math.radians(90.0),
+        description="Faces whose normals lie within this angle of each other give one direction")
+
     def execute(self, context):
-        mesh = context.object.data
-        # One entry per distinct direction; degenerate faces have no usable normal.
-        normals = sorted({tuple(round(x, 4) for x in p.normal)
-                          for p in mesh.polygons if p.select and p.normal.length > 0.5})
-        if not normals:
-            self.report({'ERROR'}, "No faces are selected: select faces in Edit Mode, then come back")
+        obj = context.object
+        normals, areas = read_selected_faces(obj)
+        if len(normals) == 0:
+            self.report({'ERROR'}, "No faces are selected: select faces in Edit Mode, then press this again")
+            return {'CANCELLED'}
+        try:
+            directions, _weights = native.core().merge_directions(normals, math.degrees(self.merge_angle), areas)
+        except (NativeModuleError, ValueError) as exc:
+            self.report({'ERROR'}, str(exc))
             return {'CANCELLED'}
         slot = _active_custom_slot(context)
-        slot.set_custom_normals(slot.custom_normal_list() + normals)
+        slot.set_custom_normals(slot.custom_normal_list() + [tuple(d) for d in directions.tolist()])
+        self.report({'INFO'}, "Added {:,} direction{} from {:,} face{}".format(
+            len(directions), "" if len(directions) == 1 else "s", len(normals), "" if len(normals) == 1 else "s"))
         return {'FINISHED'}
 
 

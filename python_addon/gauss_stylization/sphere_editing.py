@@ -5,14 +5,15 @@ dot moves that normal, a right-click removes the normal nearest to it.
 The add-on's key map sends left and right presses over a 3D view to
 OBJECT_OT_gauss_sphere_edit first; a press that does not hit an editable sphere
 passes through untouched, so clicks elsewhere keep their meaning. A live run's modal
-operator sees presses before any key map, so it lets the ones claims() wants through.
+operator sees presses before any key map, so its event handler list (modal_events) asks
+``live_run_presses`` first, which lets the presses claims() wants through to the key map.
 A live run picks an edit up at its next step (custom normals rebuild its styles).
 """
 
 import bpy
 import numpy as np
 
-from . import gauss_sphere, runs, sphere_overlay, styles
+from . import gauss_sphere, modal_events, runs, sphere_overlay, styles
 from .schema import CUSTOM
 from .viewport import viewport_region_at
 
@@ -78,6 +79,12 @@ def claims(context, event):
         return False
     area, region = found
     return hit_at(context, area, region, event.mouse_x - region.x, event.mouse_y - region.y) is not None
+
+
+def live_run_presses(_run, context, event):
+    """modal_events handler: a press on the editable sphere during a live run goes on to the
+    key map (this module's operator) instead of keeping or cancelling the run."""
+    return {'PASS_THROUGH'} if claims(context, event) else None
 
 
 class OBJECT_OT_gauss_sphere_edit(bpy.types.Operator):
@@ -163,7 +170,8 @@ classes = (OBJECT_OT_gauss_sphere_edit,)
 _keymap_items = []
 
 
-def register_keymaps():
+def register():
+    modal_events.add(live_run_presses, modal_events.OVERLAYS)
     keyconfig = bpy.context.window_manager.keyconfigs.addon
     if keyconfig is None:  # background mode: no key maps
         return
@@ -174,7 +182,8 @@ def register_keymaps():
                 OBJECT_OT_gauss_sphere_edit.bl_idname, button, 'PRESS')))
 
 
-def unregister_keymaps():
+def unregister():
+    modal_events.remove(live_run_presses)
     for keymap, item in _keymap_items:
         keymap.keymap_items.remove(item)
     _keymap_items.clear()

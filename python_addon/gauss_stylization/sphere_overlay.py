@@ -13,7 +13,7 @@ import bpy
 import gpu
 import numpy as np
 
-from . import directions, gauss_sphere, gpu_compat, native, styles, surface
+from . import directions, gauss_sphere, gpu_compat, native, runs, styles, surface
 from .errors import NativeModuleError, SettingsError
 from .fields import read_all
 from .schema import CUSTOM
@@ -78,7 +78,7 @@ def face_normal_sample(obj):
     then; their normals are computed afresh at every draw, so they follow a run."""
     coords, triangles = surface.coords_and_triangles(obj, cached_topology=True)
     mesh = obj.data
-    key = (mesh.as_pointer(), len(coords), len(triangles), surface.live_session(obj) is not None)
+    key = (mesh.as_pointer(), len(coords), len(triangles), runs.session_of(obj) is not None)
     if _sample.get("key") != key:
         _, areas = directions.triangle_normals(coords, triangles)
         _sample.update(key=key, triangles=triangles[directions.area_sample(areas, MAX_POINTS)])

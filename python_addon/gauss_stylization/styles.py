@@ -32,9 +32,9 @@ def make_style(gauss_core, slot, rotation=None, sigma=None):
     rotation = rotation_matrix(slot) if rotation is None else np.asarray(rotation, np.float64)
     sigma = slot.sigma if sigma is None else sigma
     if slot.preset == CUSTOM:
-        # Custom normals are rotated here, so "orientation" means the same for both kinds.
+        # The style turns its normals, as a preset's; the cubic method turns its cube by the same rotation.
         normals = np.array(slot.custom_normal_list(), dtype=np.float64).reshape(-1, 3)
-        return gauss_core.Style(normals=normals @ rotation.T, sigma=sigma, mu=slot.mu)
+        return gauss_core.Style(normals=normals, rotation=rotation, sigma=sigma, mu=slot.mu)
     return gauss_core.Style.preset(slot.preset.lower(), sigma=sigma, mu=slot.mu,
                                    rotation=rotation, axis_contribution=slot.axis_contribution)
 

@@ -11,17 +11,6 @@ import numpy as np
 from . import directions, mesh_io, runs
 
 
-def live_session(obj):
-    """The session of the live run on ``obj``, or None."""
-    run = runs.running.get(obj.as_pointer())
-    return None if run is None else run.session
-
-
-def live_sessions():
-    """The sessions of every live run."""
-    return [run.session for run in runs.running.values()]
-
-
 _triangles = {}  # "key": a mesh's identity and counts, "triangles": its loop triangles
 
 
@@ -31,7 +20,7 @@ def coords_and_triangles(obj, cached_topology=False):
     cached_topology: reuse the triangles read last time for the same mesh with the same
     vertex, face and corner counts (a viewport overlay redraws far more often than
     artists change topology; a change that keeps every count shows at the next change)."""
-    session = live_session(obj)
+    session = runs.session_of(obj)
     if session is not None:
         current = session.result if session.steps else session.arrays.coords
         return current, session.arrays.triangles

@@ -5,6 +5,7 @@ import bpy
 from . import native, operators, runs, schema, styles
 from .errors import NativeModuleError
 from .fields import Panel
+from .targets import stylize_objects
 
 CATEGORY = "Gauss"
 
@@ -47,17 +48,15 @@ class VIEW3D_PT_gauss_stylization(_GaussPanel, bpy.types.Panel):
             native.core()
         except NativeModuleError as exc:
             _wrapped_error(layout, str(exc))
+        for run in runs.live_runs():
+            _draw_run_state(layout, run)
         obj = _mesh_object(context)
         if obj is None:
             layout.label(text="Select a mesh object", icon='INFO')
             return
-        if len(context.selected_objects) > 1:
-            layout.label(text="Only the active object '%s' is stylized" % obj.name, icon='INFO')
-        if runs.is_running(obj):
-            box = layout.box().column(align=True)
-            box.label(text="Stylizing live", icon='TIME')
-            for hint in operators.KEY_HINTS:
-                box.label(text=hint)
+        count = len(stylize_objects(context))
+        if count > 1 and not runs.live_runs():
+            layout.label(text="Stylize acts on the %d selected meshes" % count, icon='INFO')
         row = layout.row(align=True)
         row.scale_y = 1.5
         row.operator("object.gauss_stylize", icon='PLAY')
@@ -77,6 +76,12 @@ class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
         obj = _mesh_object(context)
         settings = obj.gauss_stylization
         layout = self.layout
+        _draw_rows(_split_column(layout), obj, settings, schema.OBJECT, Panel.METHOD)
+        if schema.is_cubic(settings):
+            note = layout.column(align=True)  # short lines: the sidebar is narrow
+            note.label(text="Cubic uses each slot's", icon='INFO')
+            note.label(text="Mu and Rotation, not", icon='BLANK1')
+            note.label(text="its Style or Sigma", icon='BLANK1')
         row = layout.row()
         row.template_list("GAUSS_UL_styles", "", settings, "styles", settings, "active_style_index", rows=3)
         buttons = row.column(align=True)
@@ -99,6 +104,16 @@ class VIEW3D_PT_gauss_styles(_GaussPanel, bpy.types.Panel):
             _draw_rows(col, obj, slot, schema.SLOT, Panel.SLOT)
 
 
+def _draw_run_state(layout, run):
+    """What a live run does: its objects and steps (or its set-up), and the keys that end it."""
+    box = layout.box().column(align=True)
+    box.label(text=run.live.panel_title(), icon='TIME')
+    for text, icon in run.live.panel_lines():
+        box.label(text=text, icon=icon)
+    for hint in (operators.SETUP_HINT,) if run.preparing else operators.KEY_HINTS:
+        box.label(text=hint)
+
+
 def _split_column(layout):
     col = layout.column()
     col.use_property_split = True
@@ -107,9 +122,9 @@ def _split_column(layout):
 
 
 def _draw_rows(layout, obj, owner, table, panel):
-    """The rows of ``panel``: every field of ``table`` placed there that matters for ``owner``."""
+    """The rows of ``panel``: every field of ``table`` placed there that is shown for ``owner``."""
     for field in schema.rows(table, panel):
-        if field.relevant(owner):
+        if field.shown(owner):
             _WIDGETS[field.widget](layout, obj, owner, field)
 
 

@@ -12,12 +12,13 @@ from .errors import SettingsError
 from .fields import Where, check_all
 
 
-def object_problem(context):
-    """Why the stylize operators cannot run in ``context`` (None if they can)."""
+def object_problem(context, need_mesh=True):
+    """Why the stylize operators cannot run in ``context`` (None if they can).
+    need_mesh: the active object itself must be a mesh."""
     obj = context.active_object
     if obj is None:
         return "Select a mesh object first"
-    if obj.type != 'MESH':
+    if need_mesh and obj.type != 'MESH':
         return "'%s' is not a mesh; select a mesh object" % obj.name
     if context.mode != 'OBJECT':
         return "Switch to Object Mode to stylize"
@@ -38,6 +39,19 @@ def check_coordinates(obj, coords):
     if not np.isfinite(coords).all():
         raise SettingsError("'%s' has broken vertex positions (NaN or infinite); "
                             "fix or delete those vertices first" % obj.name)
+
+
+def check_pins(obj, pinned, triangles):
+    """A run where every vertex a face uses is pinned cannot move anything: say so instead of
+    running steps that change nothing. pinned: (#P,) vertex indices; triangles: (#T,3)."""
+    if len(pinned) == 0 or len(triangles) == 0:
+        return
+    held = np.zeros(int(triangles.max()) + 1, bool)
+    held[pinned[pinned < len(held)]] = True
+    if held[triangles].all():
+        raise SettingsError("Every vertex of '%s' is in the Pin Group '%s', so nothing can move; "
+                            "take some vertices out of the group or clear Pin Group"
+                            % (obj.name, obj.gauss_stylization.pin_group))
 
 
 def check_settings(obj, settings, known_groups):

@@ -8,6 +8,7 @@ aligned-share measure the module tests' (tests/common/measures.py).
 
 import os
 import sys
+import time
 
 import bmesh
 import bpy
@@ -25,7 +26,8 @@ for _path in (os.path.join(BUILD, "addon"), os.path.join(REPO, "tests", "common"
     if _path not in sys.path:
         sys.path.insert(0, _path)
 
-from gauss_stylization import mesh_io, settings_io  # noqa: E402  (importing does not register it)
+# Importing does not register the add-on.
+from gauss_stylization import live_run as _live_run, mesh_io, settings_io, targets  # noqa: E402
 from measures import aligned_share as _aligned_share  # noqa: E402
 import scene_kit  # noqa: E402
 from scene_kit import activate  # noqa: E402,F401  (part of this module's API)
@@ -116,3 +118,24 @@ def add_slot(obj, preset='CUBE', group="", name=None, **values):
     if name:
         spec["name"] = name
     return settings_io.add_slot(obj.gauss_stylization, spec)
+
+
+class Reports:
+    """Where an operator's reports go when a test plans a run itself: lines [(kind, text)]."""
+
+    def __init__(self):
+        self.lines = []
+
+    def report(self, kind, text):
+        self.lines.append((kind, text))
+
+
+def live_run(objects, limit=60.0):
+    """A live_run.LiveRun of ``objects`` (as the modal operator starts it) with its set-up done
+    and every object in it; the tests call tick() themselves."""
+    live = _live_run.LiveRun(targets.plan_objects(Reports(), objects))
+    deadline = time.monotonic() + limit
+    while not live.setup.done and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert live.finish_setup() == []
+    return live

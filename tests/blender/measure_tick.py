@@ -2,9 +2,9 @@
 
     blender -b --factory-startup -P tests/blender/measure_tick.py -- BUILD_DIR [MESH] [TICKS] [--drag]
 
-A tick is what OBJECT_OT_gauss_stylize does on each timer event: apply changed
-settings (none here), one solver step, vertices_into the preallocated buffer,
-foreach_set into the mesh, mesh.update(). The redraw request (area.tag_redraw)
+A tick is what OBJECT_OT_gauss_stylize does on each timer event (live_run.LiveRun.tick):
+apply changed settings (none here), one solver step, vertices_into the preallocated
+buffer, the bounds check, foreach_set into the mesh, mesh.update(). The redraw request (area.tag_redraw)
 is free without a window; the windowed driver reports live ticks too.
 Prints a line "median tick ms: X (step: Y, write-back: Z)". No assertion:
 timing depends on the machine.
@@ -29,6 +29,13 @@ REPO = os.path.dirname(os.path.dirname(HERE))
 DRAG_BLOCK = 10  # --drag: ticks per block of moving (or holding) the handle
 
 
+class Reports:
+    """Where the planning reports go (an operator's report() in the add-on)."""
+
+    def report(self, kind, text):
+        print("%s: %s" % (next(iter(kind)).title(), text))
+
+
 def main():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     drag = "--drag" in argv
@@ -42,13 +49,19 @@ def main():
     bpy.ops.wm.obj_import(filepath=os.path.join(REPO, "..", "shared", "meshes", mesh))
     obj = bpy.context.selected_objects[0]
     bpy.context.view_layer.objects.active = obj
+    # The smallest Tolerance, so every tick measured takes a step (a converged object takes none).
+    schema = gauss_stylization.schema
+    obj.gauss_stylization.tolerance = schema.field(schema.OBJECT, "tolerance").hard[0]
 
     if drag:
         pin_top_and_bottom(obj)
     start = time.perf_counter()
-    gauss_stylization.session.ensure_style_slot(obj.gauss_stylization)
-    run = gauss_stylization.session.Session(obj)
+    planned = gauss_stylization.targets.plan_objects(Reports(), [obj])
+    live = gauss_stylization.live_run.LiveRun(planned)  # what the modal operator runs
+    live.setup.wait()
+    live.finish_setup()
     setup_ms = (time.perf_counter() - start) * 1000.0
+    run = live.sessions[0]
     handles = gauss_stylization.handles.Handles(run) if drag else None
     tick_ms, move_ms, held_ms = [], [], []
     for tick in range(ticks):
@@ -60,10 +73,9 @@ def main():
             top = handles.parts[-1]
             handles.move(len(handles.parts) - 1, handles.targets[top] + [0.0005, 0.0, 0.0])
             move_ms.append((time.perf_counter() - start) * 1000.0)
-        run.sync_settings()
-        run.step()
+        live.tick()
         (tick_ms if handles is None or dragging else held_ms).append((time.perf_counter() - start) * 1000.0)
-    run.cancel()
+    live.cancel()
     step = statistics.median(run.step_ms)
     tick = statistics.median(tick_ms)
     print("mesh %s: %d vertices, %d solver faces, set-up %.0f ms"

@@ -1,27 +1,68 @@
 #!/bin/sh
-# Drive the live (modal) Stylize operator in a real Blender window under Xvfb.
+# Drive the live (modal) Stylize operator in a real Blender window under Xvfb, in four parts:
+#   windowed_driver.py       the basics (keys, clicks, shape keys, deleting things, files)
+#   windowed_live_run.py     undo during runs, the gizmo and other clicks, several objects, messages
+#   windowed_interactive.py  the Gauss sphere overlay and editing on it, pin handles dragged live
+#   windowed_quit.py         quitting during a run must not save undo steps 0 in the preferences
 #   tests/blender/run_windowed.sh [BUILD_DIR]
-# Prints "N passed, M failed"; exits non-zero on any failure, a crash or a hang.
-# Screenshots go to BUILD_DIR/screenshots/: the sidebar panel (panel.png), the Gauss sphere overlay
-# (sphere_overlay.png) and a pin handle being dragged (handle_drag.png).
+# Prints each part's result and "windowed summary: N passed, M failed"; exits non-zero on any
+# failure, a crash or a hang. Screenshots go to BUILD_DIR/screenshots/: the sidebar panel (panel.png),
+# the Gauss sphere overlay (sphere_overlay.png) and a pin handle being dragged (handle_drag.png).
 set -u
 HERE=$(cd "$(dirname "$0")" && pwd)
 BUILD=$(cd "${1:-$HERE/../../build}" && pwd) || { echo "windowed: no build dir"; exit 2; }
-RESULT="$BUILD/screenshots/windowed_result.txt"
-mkdir -p "$BUILD/screenshots"
-rm -f "$RESULT"
-timeout 600 xvfb-run -a -s "-screen 0 1280x800x24" \
-    blender --factory-startup --enable-event-simulate --python-exit-code 1 \
-    -P "$HERE/windowed_driver.py" -- "$BUILD"
-STATUS=$?
-if [ ! -s "$RESULT" ]; then
-    echo "windowed: FAIL (Blender exited with $STATUS before writing a result)"
-    echo "0 passed, 1 failed"
-    exit 1
+SHOTS="$BUILD/screenshots"
+XVFB="xvfb-run -a -s"
+SCREEN="-screen 0 1280x800x24"
+mkdir -p "$SHOTS"
+PASSED=0
+FAILED=0
+
+count() {  # $1: a line "N passed, M failed"
+    p=${1%% passed*}
+    f=${1#*passed, }
+    f=${f%% failed*}
+    PASSED=$((PASSED + p))
+    FAILED=$((FAILED + f))
+}
+
+driver() {  # $1: driver script, $2: its result file in $SHOTS
+    rm -f "$SHOTS/$2"
+    timeout 1000 $XVFB "$SCREEN" blender --factory-startup --enable-event-simulate --python-exit-code 1 \
+        -P "$HERE/$1" -- "$BUILD"
+    status=$?
+    if [ ! -s "$SHOTS/$2" ]; then
+        echo "windowed: FAIL ($1: Blender exited with $status before writing a result)"
+        FAILED=$((FAILED + 1))
+        return
+    fi
+    line=$(cat "$SHOTS/$2")
+    echo "windowed $1: $line"
+    count "$line"
+    [ "$status" -eq 0 ] || FAILED=$((FAILED + 1))
+}
+
+driver windowed_driver.py windowed_result.txt
+driver windowed_live_run.py windowed_live_run_result.txt
+driver windowed_interactive.py windowed_interactive_result.txt
+
+# Quitting: the preferences live in a folder of their own, never the user's.
+CONFIG=$(mktemp -d)
+BLENDER_USER_CONFIG=$CONFIG blender -b --factory-startup -P "$HERE/windowed_quit.py" -- "$BUILD" save \
+    > /dev/null 2>&1
+BLENDER_USER_CONFIG=$CONFIG timeout 300 $XVFB "$SCREEN" blender --enable-event-simulate \
+    -P "$HERE/windowed_quit.py" -- "$BUILD" quit > /dev/null 2>&1
+OUT=$(BLENDER_USER_CONFIG=$CONFIG blender -b -P "$HERE/windowed_quit.py" -- "$BUILD" check 2>&1)
+rm -rf "$CONFIG"
+echo "$OUT" | grep -E "^(PASS|FAIL):"
+LINE=$(echo "$OUT" | sed -n 's/^quit: //p')
+if [ -n "$LINE" ]; then
+    echo "windowed windowed_quit.py: $LINE"
+    count "$LINE"
+else
+    echo "windowed: FAIL (windowed_quit.py wrote no result)"
+    FAILED=$((FAILED + 1))
 fi
-LINE=$(cat "$RESULT")
-echo "windowed summary: $LINE"
-case "$LINE" in
-    *" 0 failed") [ "$STATUS" -eq 0 ] && exit 0 ;;
-esac
-exit 1
+
+echo "windowed summary: $PASSED passed, $FAILED failed"
+[ "$FAILED" -eq 0 ]

@@ -140,12 +140,12 @@ def test_broken_meshes_from_the_corpus(name):
         assert result == {'FINISHED'} and np.isfinite(helpers.coords(obj)).all()
 
 
-def test_solver_producing_nan_is_reported_and_undone(monkeypatch, addon):
-    obj = _suzanne_with_slot(preset='CUBE')
+def _solver_writing(monkeypatch, addon, change):
+    """gauss_core.Solver replaced by one whose vertices_into() passes its result through ``change``."""
     gauss_core = addon.native.core()
     real = gauss_core.Solver
 
-    class Diverging:
+    class Changed:
         def __init__(self, *args, **kwargs):
             self.inner = real(*args, **kwargs)
 
@@ -153,9 +153,15 @@ def test_solver_producing_nan_is_reported_and_undone(monkeypatch, addon):
             return getattr(self.inner, name)
 
         def vertices_into(self, out):
-            out[...] = math.nan
+            self.inner.vertices_into(out)
+            change(out)
 
-    monkeypatch.setattr(gauss_core, "Solver", Diverging)
+    monkeypatch.setattr(gauss_core, "Solver", Changed)
+
+
+def test_solver_producing_nan_is_reported_and_undone(monkeypatch, addon):
+    obj = _suzanne_with_slot(preset='CUBE')
+    _solver_writing(monkeypatch, addon, lambda out: out.fill(math.nan))
     _assert_refused(obj, "invalid positions")
     assert len(obj.gauss_stylization.styles) == 1
 
@@ -258,8 +264,10 @@ def test_extreme_operator_iterations_from_python():
         with pytest.raises(error):
             bpy.ops.object.gauss_stylize(iterations=bad)
         assert np.array_equal(helpers.coords(obj), before)
-    assert bpy.ops.object.gauss_stylize(iterations=-5) == {'FINISHED'}  # clamped to 0 steps
-    assert np.array_equal(helpers.coords(obj), before)
+    # Clamped to 0, which runs until converged (at most schema.UNTIL_CONVERGED_CAP steps).
+    assert bpy.ops.object.gauss_stylize(iterations=-5) == {'FINISHED'}
+    after = helpers.coords(obj)
+    assert np.isfinite(after).all() and not np.array_equal(after, before)
 
 
 def test_nan_in_settings_json(addon):
@@ -270,3 +278,20 @@ def test_nan_in_settings_json(addon):
     with pytest.raises(RuntimeError, match="Mu must be a number"):
         bpy.ops.object.gauss_stylize(iterations=5, settings_json=json.dumps(settings))
     assert np.array_equal(helpers.coords(obj), before)
+
+
+def test_all_vertices_pinned_says_nothing_can_move():
+    # Issue 14 item 6: this used to finish silently, having moved nothing.
+    obj = _suzanne_with_slot(preset='CUBE')
+    helpers.add_group(obj, "Everything", range(len(obj.data.vertices)))
+    obj.gauss_stylization.pin_group = "Everything"
+    _assert_refused(obj, "Every vertex of 'Suzanne' is in the Pin Group 'Everything', so nothing can move")
+
+
+@pytest.mark.parametrize("value, said", [(1e6, "more than 100 times the mesh's size away"), (math.inf, "not finite")])
+def test_a_blown_up_result_is_refused_with_an_accurate_message(monkeypatch, addon, value, said):
+    # Issue 14 item 6: "try a larger Lambda or fix the mesh" did not help; a finite blow-up
+    # (1e20 times the mesh's size on the hole-filled bunny) was written into the mesh.
+    obj = _suzanne_with_slot(preset='CUBE')
+    _solver_writing(monkeypatch, addon, lambda out: out.__setitem__(7, value))
+    _assert_refused(obj, "invalid positions after step 1 \\(%s\\).*a defect of the solver, not of your settings" % said)

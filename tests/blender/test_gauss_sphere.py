@@ -63,7 +63,7 @@ def test_face_normal_sample_is_bounded_area_weighted_and_follows_a_run(addon):
     helpers.activate(obj)
     run = addon.session.Session(obj)
     try:
-        addon.runs.start(obj, _Run(run))
+        addon.runs.start([obj], _Run(run))
         before = overlay.face_normal_sample(obj)
         run.step(20)
         after = overlay.face_normal_sample(obj)
@@ -76,10 +76,10 @@ def test_face_normal_sample_is_bounded_area_weighted_and_follows_a_run(addon):
 
 
 class _Run:
-    """What runs.running holds for a live run, as far as the overlay asks: its session."""
+    """What runs.running holds for a live run, as far as the overlay asks: its sessions."""
 
     def __init__(self, session):
-        self.session = session
+        self.sessions = [session]
 
 
 def test_style_look_follows_the_slot(addon):

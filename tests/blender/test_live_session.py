@@ -169,18 +169,46 @@ def test_nan_typed_in_mid_run_pauses_and_a_valid_value_resumes(addon, owner, nam
     assert np.array_equal(helpers.coords(obj), start)
 
 
-def test_vertex_group_deleted_mid_run_keeps_the_weights_read_at_start(addon):
+@pytest.mark.parametrize("which", ["Region", "Pin Group"])
+def test_vertex_group_deleted_mid_run_pauses_with_a_message(addon, which):
+    # Issue 14 item 6: the run used to go on with the weights read at start and say nothing.
     obj = helpers.suzanne(levels=1)
     start = helpers.coords(obj)
     helpers.add_group(obj, "Top", np.flatnonzero(start[:, 2] > 0))
-    helpers.add_slot(obj, 'CUBE', "Top")
+    slot = helpers.add_slot(obj, 'CUBE', "Top" if which == "Region" else "")
+    if which == "Pin Group":
+        obj.gauss_stylization.pin_group = "Top"
     run = _session(addon, obj)
     run.step(2)
     obj.vertex_groups.remove(obj.vertex_groups["Top"])
+    problem = run.sync_settings()
+    assert problem is not None and "'Top' was deleted while Stylize was running" in problem
+    assert ("Style 'Cube'" if which == "Region" else "Pin Group") in problem
+    assert run.sync_settings() == problem  # stays paused until a group that exists is picked
+    if which == "Region":
+        slot.vertex_group = ""
+    else:
+        obj.gauss_stylization.pin_group = ""
     assert run.sync_settings() is None
     run.step(2)
     run.cancel()
     assert np.array_equal(helpers.coords(obj), start)
+
+
+def test_all_vertices_pinned_is_refused_and_pauses_mid_run(addon):
+    obj = helpers.suzanne(levels=1)
+    helpers.add_group(obj, "All", range(len(obj.data.vertices)))
+    helpers.add_group(obj, "Some", range(10))
+    helpers.add_slot(obj, 'CUBE')
+    obj.gauss_stylization.pin_group = "All"
+    with pytest.raises(addon.errors.SettingsError, match="nothing can move"):
+        _session(addon, obj)
+    obj.gauss_stylization.pin_group = "Some"
+    run = _session(addon, obj)
+    run.step()
+    obj.gauss_stylization.pin_group = "All"
+    assert "nothing can move" in run.sync_settings()
+    run.cancel()
 
 
 # The panel stays usable during a live run, so shape keys or the whole object

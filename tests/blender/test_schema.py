@@ -32,6 +32,9 @@ def test_solver_owned_settings_take_the_solvers_defaults_and_limits(addon):
         assert prop.hard_min == pytest.approx(low, rel=1e-6) and prop.hard_min >= low, name
         assert prop.hard_max == pytest.approx(high, rel=1e-6) and prop.hard_max <= high, name
     assert _rna(addon, "preset").default == gauss_core.DEFAULTS["preset"].upper()
+    assert _rna(addon, "method").default == gauss_core.DEFAULTS["method"].upper()
+    assert [(item.identifier, item.value) for item in _rna(addon, "method").enum_items] == \
+        [(name.upper(), number) for number, name in enumerate(gauss_core.METHODS)]
 
 
 def test_the_json_facts_of_the_build_are_the_modules(addon):
@@ -40,6 +43,7 @@ def test_the_json_facts_of_the_build_are_the_modules(addon):
     assert from_file.defaults == gauss_core.DEFAULTS
     assert from_file.limits == dict(gauss_core.LIMITS)
     assert from_file.presets == tuple(gauss_core.PRESETS)
+    assert from_file.methods == tuple(gauss_core.METHODS)
     assert addon.native.facts() == from_file
 
 
@@ -94,7 +98,13 @@ LIVE_CHANGES = {
     ("object", "uncovered"): (dict(vertex_group="Top"), {}, 'UNSTYLED'),
     ("object", "pin_group"): ({}, {}, "Pins"),
     ("object", "lam"): ({}, {}, 8.0),
+    ("object", "method"): ({}, {}, 'CUBIC'),
+    ("object", "cubic_lambda"): ({}, dict(method='CUBIC'), 0.8),
     ("object", "admm_iterations"): ({}, {}, 3),
+}
+# Live settings that change what the solver says about the shape, not the shape: the value changed to.
+LIVE_READOUTS = {
+    ("object", "tolerance"): 0.25,  # what `converged` compares with
 }
 
 
@@ -106,7 +116,21 @@ def _live_fields(addon):
 
 
 def test_every_live_setting_has_a_case_below(addon):
-    assert set(LIVE_CHANGES) == _live_fields(addon)
+    assert set(LIVE_CHANGES) | set(LIVE_READOUTS) == _live_fields(addon)
+
+
+@pytest.mark.parametrize("owner, name", sorted(LIVE_READOUTS), ids=["-".join(k) for k in sorted(LIVE_READOUTS)])
+def test_a_readout_setting_changed_mid_run_reaches_the_solver(addon, owner, name):
+    obj = helpers.suzanne(levels=0)
+    helpers.add_slot(obj, 'CUBE')
+    settings = obj.gauss_stylization
+    run = addon.session.Session(obj)
+    run.step(2)
+    field = addon.schema.field(addon.schema.OBJECT, name)
+    field.write(settings, LIVE_READOUTS[owner, name])
+    assert run.sync_settings() is None
+    assert getattr(run.solver, name) == field.read(settings)
+    run.cancel()
 
 
 @pytest.mark.parametrize("owner, name", sorted(LIVE_CHANGES), ids=["-".join(k) for k in sorted(LIVE_CHANGES)])
@@ -167,6 +191,17 @@ def test_panel_rows_follow_the_schema(addon):
                                              "vertex_group"]
     assert _slot_rows(addon, 'CUSTOM') == ["preset", "sigma", "mu", "orientation", "vertex_group",
                                            "custom_normals"]
+
+
+def test_axis_weight_is_shown_only_for_presets_the_solver_gives_rings(addon):
+    # Issue 14 item 6: it was shown for every preset but acts only where there are rings.
+    gauss_core = addon.native.core()
+    assert "axis_contribution" not in _slot_rows(addon, 'CUBE')
+    for name in gauss_core.PRESETS:
+        has_rings = len(gauss_core.Style.preset(name).ring_offsets) > 0
+        assert ("axis_contribution" in _slot_rows(addon, name.upper())) == has_rings, name
+    assert {name for name in gauss_core.PRESETS if len(gauss_core.Style.preset(name).ring_offsets)} == \
+        {"cylinder", "cone", "double_cone"}
 
 
 _WITHOUT_MODULE = """

@@ -49,3 +49,48 @@ def test_normals_from_selected_faces():
         polygon.select = polygon.normal.z > 0.5 or polygon.normal.x > 0.5
     assert bpy.ops.object.gauss_normals_from_faces() == {'FINISHED'}
     assert sorted(slot.custom_normal_list()) == [(0, 0, 1), (1, 0, 0)]
+
+
+def _select_in_edit_mode(obj, select):
+    """Select the faces for which ``select(normal)`` holds, in Edit Mode's own mesh (as clicking
+    them would); the object's mesh data only learn of it when Edit Mode is left."""
+    import bmesh
+    bm = bmesh.from_edit_mesh(obj.data)
+    for face in bm.faces:
+        face.select_set(select(face.normal))
+    bmesh.update_edit_mesh(obj.data)
+
+
+def test_from_selected_faces_reads_the_live_edit_mode_selection(capfd):
+    # Issue 14 item 5: it read the stale selection of the mesh data ("No faces are selected").
+    bpy.ops.mesh.primitive_cube_add()
+    obj = bpy.context.active_object
+    slot = helpers.add_slot(obj, 'CUSTOM')
+    bpy.ops.object.mode_set(mode='EDIT')
+    try:
+        _select_in_edit_mode(obj, lambda n: n.z > 0.5 or n.y < -0.5)
+        assert bpy.ops.object.gauss_normals_from_faces() == {'FINISHED'}
+        assert sorted(slot.custom_normal_list()) == [(0, -1, 0), (0, 0, 1)]
+        _select_in_edit_mode(obj, lambda n: n.x < -0.5)  # another selection, still in Edit Mode
+        slot.set_custom_normals([(1, 1, 1)])
+        assert bpy.ops.object.gauss_normals_from_faces() == {'FINISHED'}
+        assert slot.custom_normal_list()[1:] == [(-1, 0, 0)]
+    finally:
+        bpy.ops.object.mode_set(mode='OBJECT')
+    assert "Added 1 direction from 1 face" in capfd.readouterr().out
+
+
+def test_from_selected_faces_merges_near_parallel_faces_and_says_how_many(capfd):
+    obj = helpers.suzanne(levels=0)
+    bpy.ops.object.mode_set(mode='OBJECT')
+    slot = helpers.add_slot(obj, 'CUSTOM')
+    for polygon in obj.data.polygons:
+        polygon.select = True
+    capfd.readouterr()
+    assert bpy.ops.object.gauss_normals_from_faces() == {'FINISHED'}
+    merged = len(slot.custom_normals)
+    assert 0 < merged < len(obj.data.polygons)
+    assert "Added %d directions from 500 faces" % merged in capfd.readouterr().out
+    slot.set_custom_normals([(0, 0, 1)])
+    assert bpy.ops.object.gauss_normals_from_faces(merge_angle=0.0) == {'FINISHED'}
+    assert len(slot.custom_normals) - 1 > merged  # no merging: (almost) one direction per face

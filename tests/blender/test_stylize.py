@@ -117,10 +117,13 @@ def test_solves_in_object_space_and_on_the_base_mesh():
     assert len(moved.data.polygons) == polygons and len(moved.modifiers) == 1
 
 
-def test_only_the_active_object_is_stylized():
+def test_every_selected_mesh_is_stylized():
+    # Issue 10 item 1 (this used to stylize only the active object).
     other = helpers.suzanne(levels=0)
     other_start = helpers.coords(other)
-    helpers.suzanne(levels=0)  # becomes the active object
+    active = helpers.suzanne(levels=0)  # becomes the active object
+    active_start = helpers.coords(active)
     other.select_set(True)
     assert helpers.stylize(10) == {'FINISHED'}
-    assert np.array_equal(helpers.coords(other), other_start)
+    assert not np.array_equal(helpers.coords(other), other_start)
+    assert not np.array_equal(helpers.coords(active), active_start)

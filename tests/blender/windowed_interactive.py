@@ -1,15 +1,27 @@
-"""Windowed scenarios of the interactive tools (issue 9): the Gauss sphere overlay, editing
-on it, and dragging pin handles during a live run. Run by windowed_driver.py, whose helpers (check, press, window, view3d,
-live_run, wait_steps, ...) arrive as ``d``; every press and drag is simulated.
+"""The live run in a real window, third part: the interactive tools of issue 9: the Gauss
+sphere overlay, editing on it, and dragging pin handles during a live run. Run by
+run_windowed.sh after windowed_driver.py, whose helpers (check, press, window, view3d,
+live_run, wait_steps, ...) the scenarios use as ``d``; every press and drag is simulated:
+
+    blender --factory-startup --enable-event-simulate -P tests/blender/windowed_interactive.py -- BUILD_DIR
+
+The summary goes to BUILD_DIR/screenshots/windowed_interactive_result.txt.
 """
 
 import json
 import os
+import sys
 
 import bpy
 import numpy as np
 
-from gauss_stylization import gauss_sphere, handles, native, settings_io, sphere_overlay, styles
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import windowed_driver as d  # noqa: E402  (also sets up the paths and the window options)
+
+from gauss_stylization import (  # noqa: E402  (windowed_driver put the add-on on sys.path)
+    gauss_sphere, handle_tool, handles, native, settings_io, sphere_overlay, styles)
+
+TIME_LIMIT = 480.0  # seconds (idle: about 1 minute; a busy 2-core machine redraws slowly)
 
 
 # -- where things are on screen ---------------------------------------------------------
@@ -278,7 +290,7 @@ def handle_dragging(d, name):
     area_screenshot(d, os.path.join(d.SHOTS, "handle_drag.png"))
     op = d.live_operator()
     d.check("a press on a pin grabs its handle and the run keeps stepping while it is dragged",
-            op is not None and op._handles.drag is not None and op.session.steps > steps + 2,
+            op is not None and handle_tool.tool_of(op).drag is not None and op.session.steps > steps + 2,
             "steps %d -> %s" % (steps, op.session.steps if op else None))
     _release(d, (grab[0] + 100, grab[1]))
     yield from d.wait_steps(d.live_operator().session.steps + 5)
@@ -338,8 +350,14 @@ def handle_dragging(d, name):
     obj.gauss_stylization.pin_group = ""
 
 
-def scenario(d, name):
+def scenario():
+    name = d.set_up()
+    yield 1.0  # first redraws
+    yield from d.open_gauss_tab()
     yield from sphere_is_drawn(d, name)
     yield from sphere_editing(d, name)
     yield from sphere_editing_during_a_run(d, name)
     yield from handle_dragging(d, name)
+
+
+d.start(scenario(), "windowed_interactive_result.txt", time_limit=TIME_LIMIT)

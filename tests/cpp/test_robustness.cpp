@@ -157,15 +157,28 @@ struct Options {
   std::vector<int64_t> face_styles;        // empty: default
 };
 
-std::vector<double> stylize(const Mesh& m, const Options& o = {}) {
+std::vector<double> run(const Mesh& m, const Options& o, gauss::Method method) {
   GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), o.pins,
                 o.targets.empty() ? nullptr : o.targets.data(), o.lambda);
   if (!o.styles.empty()) s.set_styles(o.styles);
   if (!o.face_styles.empty()) s.set_face_styles(o.face_styles.data(), static_cast<int>(o.face_styles.size()));
+  s.set_method(method);
   for (int i = 0; i < o.steps; ++i) s.step();
   std::vector<double> out(m.V.size());
   s.copy_vertices(out.data());
+  EXPECT_TRUE(std::isfinite(s.arap_energy()) && std::isfinite(s.cubic_energy()));
   return out;
+}
+
+void expect_cubic_sane(const Mesh& m, const Options& o, const std::vector<double>& out);
+
+// The Gauss method's result. Every mesh stylized here also goes through the cubic method (at its
+// default lambda, with the same pins and styles), whose result must be just as sane: the cubic method
+// survives every broken mesh the Gauss method survives.
+std::vector<double> stylize(const Mesh& m, const Options& o = {}) {
+  std::vector<double> gauss = run(m, o, gauss::Method::gauss);
+  expect_cubic_sane(m, o, run(m, o, gauss::Method::cubic));
+  return gauss;
 }
 
 std::vector<uint8_t> referenced(const Mesh& m) {
@@ -204,6 +217,31 @@ void expect_sane(const Mesh& in, const std::vector<double>& out, double growth =
     } else {
       EXPECT_LE((point(out, v) - center).cwiseAbs().maxCoeff(), growth * size) << "vertex " << v << " flew away";
     }
+  }
+}
+
+// Finite; unreferenced vertices bit for bit as given, pins exactly at their targets, every vertex
+// within 2 sizes of the box around the mesh and the pin targets.
+void expect_cubic_sane(const Mesh& m, const Options& o, const std::vector<double>& out) {
+  ASSERT_EQ(out.size(), m.V.size());
+  const std::vector<uint8_t> used = referenced(m);
+  Vector3d lo = Vector3d::Constant(INFINITY), hi = -lo;
+  for (int v = 0; v < m.num_vertices(); ++v)
+    if (used[v]) lo = lo.cwiseMin(point(m.V, v)), hi = hi.cwiseMax(point(m.V, v));
+  for (size_t i = 0; i < o.pins.size(); ++i) {
+    const Vector3d target = o.targets.empty() ? point(m.V, o.pins[i]) : point(o.targets, static_cast<int>(i));
+    EXPECT_EQ(point(out, static_cast<int>(o.pins[i])), target) << "cubic: pin " << o.pins[i] << " left its target";
+    lo = lo.cwiseMin(target), hi = hi.cwiseMax(target);
+  }
+  const Vector3d center = 0.5 * (lo + hi);
+  const double size = (hi - lo).maxCoeff();
+  std::vector<uint8_t> pinned(m.num_vertices(), 0);
+  for (int64_t p : o.pins) pinned[p] = 1;
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    ASSERT_TRUE(point(out, v).allFinite()) << "cubic: vertex " << v;
+    if (pinned[v]) continue;
+    if (!used[v]) EXPECT_EQ(point(out, v), point(m.V, v)) << "cubic: unreferenced vertex " << v << " moved";
+    else EXPECT_LE((point(out, v) - center).cwiseAbs().maxCoeff(), 2.0 * size) << "cubic: vertex " << v << " flew away";
   }
 }
 

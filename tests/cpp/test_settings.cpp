@@ -36,13 +36,18 @@ bool apply_and_step(const Setting& s, double value) {
   GaussSolver solver(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), {}, nullptr, lambda);
   if (&s == &settings::lambda) solver.set_lambda(value);
   if (&s == &settings::admm_iterations) solver.set_admm_iterations(static_cast<int>(value));
+  if (&s == &settings::cubic_lambda) {  // the cubic method reads it (with the style's mu)
+    solver.set_cubic_lambda(value);
+    solver.set_method(gauss::Method::cubic);
+  }
+  if (&s == &settings::tolerance) solver.set_tolerance(value);
   solver.set_styles({g});
   solver.step();
   std::vector<double> out(m.V.size());
   solver.copy_vertices(out.data());
   for (double x : out)
     if (!std::isfinite(x)) return false;
-  return std::isfinite(solver.arap_energy()) && std::isfinite(solver.g_energy());
+  return std::isfinite(solver.arap_energy()) && std::isfinite(solver.g_energy()) && std::isfinite(solver.cubic_energy());
 }
 
 }  // namespace

@@ -95,8 +95,14 @@ Box box(const std::vector<double>& V) {
 
 // Runs `steps` steps and checks, at each checkpoint, that coordinates and energies are finite and the
 // mesh stays within kGrowth sizes of its rest box's centre. Returns the final vertices.
-std::vector<double> run_bounded(const Mesh& m, double lambda, int steps, const std::string& what) {
-  gauss::GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), {}, nullptr, lambda);
+// With Method::cubic, lambda is the cubic method's.
+std::vector<double> run_bounded(const Mesh& m, double lambda, int steps, const std::string& what,
+                                gauss::Method method = gauss::Method::gauss) {
+  const bool cubic = method == gauss::Method::cubic;
+  gauss::GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), {}, nullptr,
+                       cubic ? gauss::settings::lambda.default_value : lambda);
+  if (cubic) s.set_cubic_lambda(lambda);
+  s.set_method(method);
   const Box rest = box(m.V);
   std::vector<double> out(m.V.size());
   for (int done = 0; done < steps;) {
@@ -109,7 +115,8 @@ std::vector<double> run_bounded(const Mesh& m, double lambda, int steps, const s
     EXPECT_TRUE(std::isfinite(worst) && worst <= kGrowth)
         << what << " lambda " << lambda << ": after " << done << " steps a vertex is " << worst
         << " sizes from the centre";
-    EXPECT_TRUE(std::isfinite(s.arap_energy()) && std::isfinite(s.g_energy())) << what << " after " << done;
+    EXPECT_TRUE(std::isfinite(s.arap_energy()) && std::isfinite(s.g_energy()) && std::isfinite(s.cubic_energy()))
+        << what << " after " << done;
     if (::testing::Test::HasFailure()) break;
   }
   return out;
@@ -148,6 +155,14 @@ TEST(Slivers, HoleFilledByAFanStaysBoundedFor1000Steps) {
 
 TEST(Slivers, SliversNextToGoodTrianglesStayBoundedFor1000Steps) {
   for (double lambda : {1.0, 4.0, 20.0}) run_bounded(slivers_in_grid(12), lambda, 1000, "slivers in a grid");
+}
+
+TEST(Slivers, TheCubicMethodStaysBoundedFor1000StepsToo) {
+  for (double lambda : {0.2, gauss::settings::cubic_lambda.max}) {
+    run_bounded(ngon_cylinder(16, 8), lambda, 1000, "cubic: cylinder", gauss::Method::cubic);
+    run_bounded(hole_filled_by_fan(), lambda, 1000, "cubic: hole filled by a fan", gauss::Method::cubic);
+    run_bounded(slivers_in_grid(12), lambda, 1000, "cubic: slivers in a grid", gauss::Method::cubic);
+  }
 }
 
 // The hole-filled bunny (smallest angle 0.002 degrees) stylized well for 100 steps, then fell apart.

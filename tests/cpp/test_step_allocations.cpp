@@ -6,6 +6,9 @@
 #include <cstdlib>
 #include <new>
 
+#include <Eigen/Geometry>
+
+#include "gauss/cholesky_solver.h"
 #include "gauss/gauss_solver.h"
 #include "gauss/presets.h"
 #include "test_meshes.h"
@@ -31,9 +34,14 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 TEST(StepAllocations, StepsDoNotAllocate) {
-  // Large enough for the parallel paths (more than 4096 faces), with pins, two styles (one with
-  // rings), an unstyled face and several ADMM rounds, so every branch of a step runs.
+  // Large enough for the parallel paths (more than 4096 faces), with pins (on one of two components:
+  // Keep Volume scales the other), two styles (one with rings), an unstyled face and several ADMM
+  // rounds, so every branch of a step runs.
   gauss::TriangleMesh m = gauss_test::icosphere(5);
+  const gauss::TriangleMesh second = gauss_test::icosphere(2);
+  const int offset = m.num_vertices();
+  for (size_t i = 0; i < second.V.size(); ++i) m.V.push_back(second.V[i] + (i % 3 == 0 ? 3.0 : 0.0));
+  for (int64_t i : second.F) m.F.push_back(i + offset);
   gauss::GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), {0, 17});
   s.set_styles({gauss::PreferenceFunction(gauss::preset_style("cube")),
                 gauss::PreferenceFunction(gauss::preset_style("double_cone"))});
@@ -46,8 +54,51 @@ TEST(StepAllocations, StepsDoNotAllocate) {
   const long before = g_allocations.load();
   for (int i = 0; i < 5; ++i) s.step();
   EXPECT_EQ(g_allocations.load() - before, 0);
+  // What wraps a step: Keep Volume, stepping until converged.
+  s.set_keep_volume(true);
+  const long before_options = g_allocations.load();
+  for (int i = 0; i < 5; ++i) s.step();
+  s.step_until(gauss::settings::tolerance.min, 5);
+  EXPECT_EQ(g_allocations.load() - before_options, 0);
   std::vector<double> out(m.V.size());
   const long before_copy = g_allocations.load();
   s.copy_vertices(out.data());
   EXPECT_EQ(g_allocations.load() - before_copy, 0);
+  // The cubic method: preparing it may allocate, its steps may not (two styles, one turned, an
+  // unstyled face, pins: every branch of its ADMM).
+  s.set_method(gauss::Method::cubic);
+  gauss::StyleParams turned = gauss::preset_style("cube");
+  turned.rotation = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  s.set_style(1, gauss::PreferenceFunction(turned));
+  for (int i = 0; i < 3; ++i) s.step();
+  const long before_cubic = g_allocations.load();
+  for (int i = 0; i < 5; ++i) s.step();
+  EXPECT_EQ(g_allocations.load() - before_cubic, 0);
+  EXPECT_GT(s.cubic_admm_iterations(), 0);
+}
+
+TEST(StepAllocations, CholeskySolveDoesNotAllocate) {
+  // Large enough for nested dissection, both parts on threads and the sums owed to the rows above
+  // the cut (a step's solve on the 60,002-vertex cube).
+  gauss::TriangleMesh m = gauss_test::grid_cube(100);
+  std::vector<Eigen::Triplet<double>> entries;
+  const int n = m.num_vertices();
+  std::vector<double> diagonal(n, 1e-3);
+  for (int f = 0; f < m.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = static_cast<int>(m.F[3 * f + k]), b = static_cast<int>(m.F[3 * f + (k + 1) % 3]);
+      entries.emplace_back(std::max(a, b), std::min(a, b), -0.5);
+      diagonal[a] += 0.5;
+      diagonal[b] += 0.5;
+    }
+  for (int i = 0; i < n; ++i) entries.emplace_back(i, i, diagonal[i]);
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  gauss::CholeskySolver s;
+  s.factor(A);
+  std::vector<double> y(3 * static_cast<size_t>(n), 1.0);
+  s.solve_ordered_in_place(y.data());  // warm-up: the thread pool starts its workers
+  const long before = g_allocations.load();
+  for (int i = 0; i < 3; ++i) s.solve_ordered_in_place(y.data());
+  EXPECT_EQ(g_allocations.load() - before, 0);
 }

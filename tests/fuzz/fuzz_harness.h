@@ -15,7 +15,7 @@
 //    pinned vertices exactly at their targets.
 //
 // Input layout (bytes consumed front to back; missing bytes read as 0): mesh, pins, lambda, then up
-// to 16 operations, then new pin targets. tests/fuzz/make_corpus.py writes seeds in this layout.
+// to 16 operations, then new pin targets, then a continuation with the cubic method. tests/fuzz/make_corpus.py writes seeds in this layout.
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -414,6 +414,37 @@ inline void check(const gauss::GaussSolver& s, const Mesh& m, const std::vector<
       fail("an unreferenced vertex moved");
   if (!std::isfinite(s.arap_energy())) fail("E_ARAP is NaN or infinite");
   if (!std::isfinite(s.g_energy())) fail("E_g is NaN or infinite");
+  if (!std::isfinite(s.cubic_energy())) fail("E_cubic is NaN or infinite");
+}
+
+// The same session continued with the cubic method (cubic_local_step.h): a cubic lambda (default or
+// any), a run, optionally new styles or a reset and back to the Gauss method for a step. It runs after
+// drag_pins, so inputs saved before it still replay the sessions they were saved for first.
+template <class Step>
+void cubic_session(Reader& r, gauss::GaussSolver& s, const Mesh& m, const std::vector<uint8_t>& referenced,
+                   const Pins& pins, Step&& step) {
+  const uint8_t mode = r.byte();
+  try {
+    if (mode & 1) s.set_cubic_lambda(r.param());
+  } catch (const std::invalid_argument& e) {
+    GAUSS_FUZZ_TRACE("  set_cubic_lambda refused: %s\n", e.what());
+  }
+  s.set_method(gauss::Method::cubic);
+  const int n = 1 + r.byte() % 64;
+  GAUSS_FUZZ_TRACE("  cubic: lambda %g, %d steps\n", s.cubic_lambda(), n);
+  for (int i = 0; i < n; ++i) step();
+  check(s, m, referenced, pins);
+  if (mode & 2)
+    if (auto g = make_style(r)) {  // the cubic method reads its mu and rotation
+      try {
+        s.set_style(0, *g);
+      } catch (const std::invalid_argument&) {  // there is no style 0
+      }
+      step();
+    }
+  if (mode & 4) s.reset(), step(), step();
+  if (mode & 8) s.set_method(gauss::Method::gauss), step();
+  check(s, m, referenced, pins);
 }
 
 inline void run_one(const uint8_t* data, size_t size) {
@@ -522,6 +553,11 @@ inline void run_one(const uint8_t* data, size_t size) {
   drag_pins(r, *s, m, pins);
   step();
   check(*s, m, referenced, pins);
+  try {
+    cubic_session(r, *s, m, referenced, pins, step);
+  } catch (const std::invalid_argument& e) {
+    GAUSS_FUZZ_TRACE("    refused: %s\n", e.what());
+  }
   GAUSS_FUZZ_TRACE("  done: %d steps since reset, %d styles, E_g %g\n", s->step_count(), s->num_styles(), s->g_energy());
 }
 

@@ -165,6 +165,23 @@ class Seed:
         """n = 100, 200, ..., 1000 steps, then the read-outs are checked."""
         return self.byte(LONG_RUN).byte(n // 100 - 1)
 
+    # --- after the operations ---
+    def keep_pins(self):
+        """drag_pins: mode 0 moves each pin target by real()/8; only for seeds without pins."""
+        return self.byte(0)
+
+    def cubic(self, lam=None, steps=1, restyle=None, reset=False, back_to_gauss=False):
+        """cubic_session: the cubic method (lambda: its default, or lam), `steps` steps (1..64), then
+        optionally set_style(0, restyle), reset, and a step of the Gauss method."""
+        mode = (lam is not None) | (restyle is not None) << 1 | reset << 2 | back_to_gauss << 3
+        self.byte(mode)
+        if lam is not None:
+            self.param(lam)
+        self.byte(steps - 1)
+        if restyle is not None:
+            restyle(self)
+        return self
+
 
 def seeds():
     out = {}
@@ -233,6 +250,13 @@ def seeds():
                           (0.25, 0.25, 0), (0.75, 0.75, 0)],
                          [(a, c, b) for a, b, c in bottom] + [(0, 1, 5), (1, 2, 5), (2, 3, 5), (3, 0, 5)])
         .pins().lam(20.0).ops(1).long_run(1000))
+    # The cubic method after a Gauss run: slivers, a turned style, a reset, and back; its largest lambda.
+    out["cubic_ngon_cylinder_restyled"] = (
+        Seed().mesh(NGON_PRISM, 13, 8, 7).pins().lam().ops(1).steps(2).keep_pins()
+        .cubic(0.5, 64, restyle=lambda s: s.style("cube", mu=2.0, quat=(0.9, 0.1, 0.3, 0.2)), reset=True,
+               back_to_gauss=True))
+    out["cubic_grid_lambda_64"] = (Seed().mesh(GRID, 5, 4, 1).pins().lam().ops(1).steps(1).keep_pins()
+                                   .cubic(64.0, 64))
     out["empty"] = Seed()
     return out
 

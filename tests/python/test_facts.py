@@ -1,4 +1,5 @@
-"""The settings table and preset registry as gauss_core exports them (DEFAULTS, LIMITS, PRESETS), as the
+"""The settings table, preset registry and methods as gauss_core exports them (DEFAULTS, LIMITS, PRESETS,
+METHODS), as the
 build writes them for the add-on (core_facts.json), and as the solver enforces them."""
 import json
 import math
@@ -10,14 +11,15 @@ import gauss_core
 from conftest import BUILD
 from meshes import icosphere
 
-SETTINGS = ("lam", "sigma", "mu", "axis_contribution", "admm_iterations")
+SETTINGS = ("lam", "sigma", "mu", "axis_contribution", "admm_iterations", "cubic_lambda", "tolerance")
 INTEGER = {"admm_iterations"}
-LABEL = {"lam": "lambda", "admm_iterations": "ADMM iterations"}  # how error messages call them
+OPTIONS = ("keep_volume",)  # on/off: a bool default, no limits
+LABEL = {"lam": "lambda", "admm_iterations": "ADMM iterations", "cubic_lambda": "cubic lambda"}  # in messages
 V, F = icosphere(2)
 
 
 def test_defaults_and_limits_have_the_documented_keys_and_types():
-    assert set(gauss_core.DEFAULTS) == set(SETTINGS) | {"preset"}
+    assert set(gauss_core.DEFAULTS) == set(SETTINGS) | set(OPTIONS) | {"preset", "method"}
     assert set(gauss_core.LIMITS) == set(SETTINGS)
     for name in SETTINGS:
         lo, hi = gauss_core.LIMITS[name]
@@ -25,6 +27,14 @@ def test_defaults_and_limits_have_the_documented_keys_and_types():
         assert type(gauss_core.DEFAULTS[name]) is kind and type(lo) is kind and type(hi) is kind, name
         assert lo <= gauss_core.DEFAULTS[name] <= hi, name
     assert gauss_core.DEFAULTS["preset"] in gauss_core.PRESETS
+    assert gauss_core.DEFAULTS["method"] == "gauss"
+    for name in OPTIONS:
+        assert type(gauss_core.DEFAULTS[name]) is bool, name
+
+
+def test_the_method_registry_order_is_unchanged():
+    # Saved .blend files store the add-on's method enum by position in this tuple: append only.
+    assert gauss_core.METHODS == ("gauss", "cubic")
 
 
 def test_the_preset_registry_order_is_unchanged():
@@ -37,7 +47,8 @@ def test_the_preset_registry_order_is_unchanged():
 
 def test_core_facts_json_written_by_the_build_equals_the_exports():
     facts = json.loads((BUILD / "addon" / "gauss_stylization" / "core_facts.json").read_text())
-    assert set(facts) == {"DEFAULTS", "LIMITS", "PRESETS"}
+    assert set(facts) == {"DEFAULTS", "LIMITS", "PRESETS", "METHODS"}
+    assert tuple(facts["METHODS"]) == gauss_core.METHODS
     assert facts["DEFAULTS"] == gauss_core.DEFAULTS
     for name, value in facts["DEFAULTS"].items():  # 4.0 stays a float, 1 an int
         assert type(value) is type(gauss_core.DEFAULTS[name]), name
@@ -48,7 +59,11 @@ def test_core_facts_json_written_by_the_build_equals_the_exports():
 def test_a_new_solver_and_keyword_defaults_use_the_defaults():
     s = gauss_core.Solver(V, F)
     assert s.lam == gauss_core.DEFAULTS["lam"]
+    assert s.method == gauss_core.DEFAULTS["method"] and s.cubic_lambda == gauss_core.DEFAULTS["cubic_lambda"]
     assert s.admm_iterations == gauss_core.DEFAULTS["admm_iterations"]
+    assert s.tolerance == gauss_core.DEFAULTS["tolerance"]
+    for name in OPTIONS:
+        assert getattr(s, name) is gauss_core.DEFAULTS[name], name
     (style,) = s.styles
     assert style.name == gauss_core.DEFAULTS["preset"]
     for made in (style, gauss_core.Style.preset("cone"), gauss_core.Style([[0, 0, 1]])):
@@ -58,8 +73,8 @@ def test_a_new_solver_and_keyword_defaults_use_the_defaults():
 
 def _apply(name, value):
     """Uses one setting where the module takes it, steps once, returns the vertices."""
-    if name in ("lam", "admm_iterations"):
-        s = gauss_core.Solver(V, F, **{name: value})
+    if name in ("lam", "admm_iterations", "cubic_lambda", "tolerance"):
+        s = gauss_core.Solver(V, F, method="cubic" if name == "cubic_lambda" else "gauss", **{name: value})
         setattr(s, name, value)
     else:
         s = gauss_core.Solver(V, F)

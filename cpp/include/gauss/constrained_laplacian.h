@@ -23,6 +23,7 @@
 
 #include "gauss/cholesky_solver.h"
 #include "gauss/mesh_topology.h"
+#include "gauss/progress.h"
 
 namespace gauss {
 
@@ -36,11 +37,12 @@ class ConstrainedLaplacian {
   // rest         #V by 3 rest positions: where anchors stay, and the centroids free components keep
   // pinned       #P distinct vertex indices in [0, #V) (GaussSolver checks them in the caller's numbering)
   // pin_positions  #P by 3 targets of the pinned vertices
+  // progress     optional: the factorization reports to it and stops (Cancelled) when it is cancelled
   // Throws std::invalid_argument if the sizes disagree, std::runtime_error if L_ff is not numerically
-  // positive definite (CholeskySolver::factor).
+  // positive definite, OutOfMemory or Cancelled (CholeskySolver::factor).
   ConstrainedLaplacian(const MeshTopology& topo, const std::vector<double>& edge_weight,
                        const std::vector<Eigen::Vector3d>& rest, const std::vector<int64_t>& pinned,
-                       const std::vector<Eigen::Vector3d>& pin_positions);
+                       const std::vector<Eigen::Vector3d>& pin_positions, Progress* progress = nullptr);
 
   // New targets for the same pins (#P by 3, in the order of `pinned`): updates the constant
   // right-hand side, never re-factors. Throws std::invalid_argument if the count differs from #P.

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "gauss/progress.h"
+
 namespace gauss {
 
 struct MeshTopology {
@@ -26,7 +28,9 @@ struct MeshTopology {
 };
 
 // F: #F_in by 3 vertex indices (row-major, int64 for generality), each in [0, num_vertices).
-// Throws std::invalid_argument if an index is out of range or no usable face remains.
-MeshTopology build_mesh_topology(int num_vertices, const int64_t* F, int num_input_faces);
+// Throws std::invalid_argument if an index is out of range or no usable face remains, Cancelled
+// (progress.h) between its stages once `progress` is cancelled.
+MeshTopology build_mesh_topology(int num_vertices, const int64_t* F, int num_input_faces,
+                                 const Progress* progress = nullptr);
 
 }  // namespace gauss

@@ -52,6 +52,7 @@ class PreferenceFunction {
   double mu() const { return mu_; }
   const std::vector<Eigen::Vector3d>& normals() const { return normals_; }  // rotated
   const Eigen::Vector3d& axis() const { return axis_; }                      // rotated
+  const Eigen::Matrix3d& rotation() const { return rotation_; }              // the orientation given
   const std::vector<double>& ring_offsets() const { return offsets_; }
   bool has_rings() const { return !offsets_.empty(); }
   // The many-normals representation, or nullptr when the normals are summed exactly.
@@ -69,6 +70,7 @@ class PreferenceFunction {
   std::vector<double> offsets_;
   std::vector<double> ring_weights_;    // w'_r
   double sigma_, mu_;
+  Eigen::Matrix3d rotation_;
 };
 
 }  // namespace gauss

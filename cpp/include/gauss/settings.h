@@ -34,6 +34,12 @@ struct Setting {
   }
 };
 
+// An on/off option of the solver: exported in gauss_core.DEFAULTS (a bool; it has no limits).
+struct Option {
+  const char* name;  // the Python name (Solver keyword and property)
+  bool default_value;
+};
+
 namespace settings {
 
 // lambda of Eq. 27: how strongly edges follow the preferred normals.
@@ -46,8 +52,31 @@ inline constexpr Setting mu{"mu", "mu", 1.0, 0.0, 1e3, false};
 inline constexpr Setting axis_contribution{"axis_contribution", "axis_contribution", 0.5, 0.0, 1.0, false};
 // ADMM rounds per step (Algorithm 1's inner loop).
 inline constexpr Setting admm_iterations{"admm_iterations", "ADMM iterations", 1, 1, 100, true};
+// lambda of the cubic method (Cubic Stylization, Liu & Jacobson 2019): the weight of its term
+// lambda * a_i * ||R_i n_i||_1 against ARAP in a unit bounding box; 0.2 is the reference
+// implementation's default. Gauss's lambda (above) weighs another energy, so each method has its own.
+inline constexpr Setting cubic_lambda{"cubic_lambda", "cubic lambda", 0.2, 0.0, 100.0, false};
 
-inline constexpr const Setting* all[] = {&lambda, &sigma, &mu, &axis_contribution, &admm_iterations};
+// Stylization methods, by the names gauss_core takes (Solver(method=...)): the paper's "gauss" and
+// Cubic Stylization's "cubic" (cubic_local_step.h). A new method is appended, never reordered: the
+// add-on's enum stores these positions in saved files.
+inline constexpr const char* method_names[] = {"gauss", "cubic"};
+inline constexpr const char* default_method = "gauss";
+
+// A run has converged when a step moved the mesh by less than this relative change, reldV
+// (fixed_point_iteration.h): the largest coordinate change of the step over the largest coordinate
+// displacement from the rest mesh (the stopping rule of the reference cubic stylization code).
+// Below 1e-5 the rounding floor of reldV is too close (a still mesh reads ~4e-7).
+inline constexpr Setting tolerance{"tolerance", "tolerance", 1e-3, 1e-5, 1.0, false};
+
+inline constexpr const Setting* all[] = {&lambda,          &sigma,        &mu,       &axis_contribution,
+                                         &admm_iterations, &cubic_lambda, &tolerance};
+
+// After each step, scale every component back to its rest volume (closed) or area (open): issue 10's
+// Keep Volume (volume_keeper.h).
+inline constexpr Option keep_volume{"keep_volume", false};
+
+inline constexpr const Option* options[] = {&keep_volume};
 
 // Sizes. A style's preferred normals: set-up is O(K log K) up to this many (normal_field.h); bigger
 // sets are refused with a message that points to gauss_core.merge_directions. Rings: their weights
@@ -62,8 +91,8 @@ inline constexpr const char* default_preset = "cube";
 // Coordinates of vertices that faces use: within +-max_coordinate (near 1e308 the output
 // x * scale + center overflowed to infinity).
 inline constexpr double max_coordinate = 1e200;
-// Pin targets: within max_pin_distance times the mesh's size of its centre (beyond ~1e150 sizes,
-// squared edge lengths overflow and E_ARAP turns infinite).
+// Pin targets and the vertices set_vertices() takes: within max_pin_distance times the mesh's size of
+// its centre (beyond ~1e150 sizes, squared edge lengths overflow and E_ARAP turns infinite).
 inline constexpr double max_pin_distance = 1e12;
 
 }  // namespace settings

@@ -1,0 +1,59 @@
+#pragma once
+// What gauss_core exports from the solver's tables (settings.h, presets.h): PRESETS, METHODS, DEFAULTS,
+// LIMITS and SIZE_LIMITS, and the reading of a method's name. For the Python module only.
+#include <pybind11/pybind11.h>
+
+#include <algorithm>
+#include <cctype>
+#include <iterator>
+#include <string>
+
+#include "gauss/gauss_solver.h"
+#include "gauss/presets.h"
+#include "gauss/settings.h"
+
+namespace gauss_python {
+
+namespace py = pybind11;
+
+// A method by name (gauss::settings::method_names), in any case: the add-on passes its enum ids ('CUBIC').
+inline gauss::Method parse_method(const std::string& name) {
+  std::string lower = name, known;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  for (size_t i = 0; i < std::size(gauss::settings::method_names); ++i) {
+    if (lower == gauss::settings::method_names[i]) return static_cast<gauss::Method>(i);
+    known += std::string(i ? ", '" : "'") + gauss::settings::method_names[i] + "'";
+  }
+  throw py::value_error("method must be one of " + known + " (got '" + name + "')");
+}
+
+inline void export_facts(py::module_& m) {
+  namespace settings = gauss::settings;
+  py::list presets;
+  for (const std::string& n : gauss::preset_names()) presets.append(n);
+  m.attr("PRESETS") = py::tuple(presets);
+  py::dict defaults, limits;
+  for (const gauss::Setting* setting : settings::all) {
+    if (setting->integer) {
+      defaults[setting->name] = static_cast<long>(setting->default_value);
+      limits[setting->name] = py::make_tuple(static_cast<long>(setting->min), static_cast<long>(setting->max));
+    } else {
+      defaults[setting->name] = setting->default_value;
+      limits[setting->name] = py::make_tuple(setting->min, setting->max);
+    }
+  }
+  for (const gauss::Option* option : settings::options) defaults[option->name] = option->default_value;
+  defaults["preset"] = settings::default_preset;
+  defaults["method"] = settings::default_method;
+  py::list methods;
+  for (const char* name : settings::method_names) methods.append(name);
+  m.attr("METHODS") = py::tuple(methods);
+  m.attr("DEFAULTS") = defaults;
+  m.attr("LIMITS") = limits;
+  py::dict sizes;
+  sizes["normals"] = settings::max_style_normals;
+  sizes["rings"] = settings::max_style_rings;
+  m.attr("SIZE_LIMITS") = sizes;
+}
+
+}  // namespace gauss_python

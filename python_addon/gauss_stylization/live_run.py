@@ -1,0 +1,240 @@
+"""The objects of one live run: their set-up on a worker thread, then solver steps at every tick.
+
+Nothing here touches the interface; the modal operator (operators.py) reports
+what ``finish_setup()`` and ``tick()`` return and shows ``status_text()``.
+
+A tick gives every object at most one step, in turn, until the tick's time
+budget is used; the next tick goes on with the object after the last one
+stepped (round-robin), so with a short budget every object still advances
+equally. An object whose settings cannot run pauses (the others go on); an
+object that fails or disappears is restored and leaves the run. An object that
+has converged (its last step moved it by less than its Tolerance) is not
+stepped until a change of its settings, styles or pins makes its solver forget
+that, then it resumes by itself.
+"""
+
+import time
+
+from .errors import SettingsError
+from .progress import progress_text
+from .session import Session
+from .settings_io import to_dict
+from .solver_setup import SolverSetup
+from .targets import TITLE
+
+TICK_BUDGET = 1.0 / 30.0  # seconds of solver steps per tick before the rest wait for the next one
+CONVERGED = "Converged"  # status bar and panel: the object is not stepped until something changes
+
+
+class TickOutcome:
+    """paused:  [(object name, why)] for objects that paused at this tick (each reason once)
+    stopped: [(session, why)] for objects restored and taken out of the run
+    stepped: how many objects took a step (0: nothing changed, nothing to redraw)"""
+
+    def __init__(self):
+        self.paused, self.stopped = [], []
+        self.stepped = 0
+
+
+class LiveRun:
+    def __init__(self, planned):
+        """planned: targets.Planned; their solvers are set up from now on (SolverSetup)."""
+        self.planned = planned
+        self.setup = SolverSetup(planned.plans)
+        self.sessions = []
+        self.paused = {}     # session -> why it cannot step now
+        self.converged = set()  # sessions not stepped because they converged (read at the last tick)
+        self.next = 0        # index of the session the next tick starts with
+        self.tick_ms = []
+
+    @property
+    def preparing(self):
+        return self.setup is not None
+
+    # -- set-up -------------------------------------------------------------------
+
+    def finish_setup(self):
+        """Once ``setup.done``: a Session per solver built. Returns [(object name, why)] of the skipped."""
+        skipped = []
+        for plan, result in zip(self.planned.plans, self.setup.results):
+            try:
+                if isinstance(result, Exception) or result is None:
+                    raise result or SettingsError("the set-up did not finish")
+                why = plan.changed()
+                if why is not None:
+                    raise SettingsError(why)
+                self.sessions.append(Session(plan, result, background_pins=True))
+            except SettingsError as exc:
+                skipped.append((plan.name, str(exc)))
+                self.planned.give_up(plan)
+        self.setup = None
+        return skipped
+
+    # -- running ------------------------------------------------------------------
+
+    def tick(self, budget=TICK_BUDGET):
+        """Sync settings and step objects in turn for up to ``budget`` seconds (at least one step)."""
+        outcome = TickOutcome()
+        start = time.perf_counter()
+        count, first = len(self.sessions), self.next
+        stepped = 0
+        for offset in range(count):
+            index = (first + offset) % count
+            session = self.sessions[index]
+            if not session.object_alive():
+                outcome.stopped.append((session, "the object was deleted or its mesh replaced"))
+                continue
+            if session.busy is not None:  # re-factoring for new pins on another thread
+                self.converged.discard(session)
+                continue
+            problem = session.sync_settings()
+            if problem is not None:
+                if self.paused.get(session) != problem:
+                    outcome.paused.append((session.name, problem))
+                self.paused[session] = problem
+                self.converged.discard(session)
+                continue
+            self.paused.pop(session, None)
+            if session.busy is not None:  # the sync began re-factoring for new pins: wait for it
+                self.converged.discard(session)
+                continue
+            if session.converged:  # and nothing changed since: no step, no CPU
+                self.converged.add(session)
+                continue
+            self.converged.discard(session)
+            try:
+                session.step()
+            except (SettingsError, ValueError, RuntimeError) as exc:
+                outcome.stopped.append((session, str(exc)))
+                continue
+            if session.converged:
+                self.converged.add(session)
+            stepped += 1
+            self.next = (index + 1) % count
+            if time.perf_counter() - start > budget:
+                break
+        if stepped:
+            self.tick_ms.append((time.perf_counter() - start) * 1000.0)
+        outcome.stepped = stepped
+        for session, _why in outcome.stopped:
+            self._drop(session)
+        return outcome
+
+    def _drop(self, session):
+        """Restore ``session``'s object as far as it exists and take it out of the run."""
+        self.sessions.remove(session)
+        self.paused.pop(session, None)
+        self.converged.discard(session)
+        self.next = 0
+        session.cancel()
+
+    def drop_gone(self):
+        """Take the objects deleted since the last tick out (before keeping). Returns their names."""
+        gone = [session for session in self.sessions if not session.object_alive()]
+        for session in gone:
+            self._drop(session)
+        return [session.name for session in gone]
+
+    def edited(self):
+        """Do the run's objects have settings other than those they started with (or a default
+        style the run added and keeps)? Asked before a cancel."""
+        if self.setup is None and self.planned.slot_added:
+            return True
+        for plan in self.planned.plans:
+            try:
+                if to_dict(plan.obj.gauss_stylization) != plan.applied:
+                    return True
+            except ReferenceError:  # deleted during the run: an edit too
+                return True
+        return False
+
+    # -- ending -------------------------------------------------------------------
+
+    def keep(self):
+        for session in self.sessions:
+            session.keep()
+
+    def cancel(self):
+        """Restore every object (a set-up still running is stopped: nothing was changed yet)."""
+        if self.setup is not None:
+            self.setup.cancel()
+            self.setup = None
+            self.planned.undo_added_slots()
+            return
+        failure = None
+        for session in self.sessions:  # restore as many as possible even if one fails
+            try:
+                session.cancel()
+            except Exception as exc:  # noqa: BLE001 (re-raised below, after the others)
+                failure = failure or exc
+        if failure is not None:
+            raise failure
+
+    # -- what it shows ------------------------------------------------------------
+
+    @property
+    def steps(self):
+        """Steps of the first object (what the redo panel repeats)."""
+        return self.sessions[0].steps if self.sessions else 0
+
+    def status_text(self):
+        """One line for the header and the status bar (without the key hints)."""
+        if self.preparing:
+            return TITLE + ": " + progress_text(self.setup.text(), self.setup.fraction)
+        sessions = self.sessions
+        if not sessions:
+            return TITLE
+        converged = self.converged
+        if len(sessions) == 1:
+            text = TITLE + ": step %d" % sessions[0].steps
+            if converged:
+                text += "  |  " + CONVERGED
+            elif sessions[0].step_ms and self.tick_ms:
+                text += "  |  %.1f ms/step, %.1f ms/tick" % (sessions[0].step_ms[-1], self.tick_ms[-1])
+        else:
+            steps = [session.steps for session in sessions]
+            text = TITLE + ": %d objects, step %s" % (
+                len(sessions), min(steps) if min(steps) == max(steps) else "%d-%d" % (min(steps), max(steps)))
+            if len(converged) == len(sessions):
+                text += "  |  " + CONVERGED + " (all)"
+            elif converged:
+                text += "  |  %s: %s" % (CONVERGED, ", ".join(sorted("'%s'" % s.name for s in converged)))
+            if self.tick_ms and len(converged) < len(sessions):
+                text += "  |  %.1f ms/tick" % self.tick_ms[-1]
+        for session, why in self.paused.items():
+            text += "  |  " + (("'%s' paused: " % session.name) if len(sessions) > 1 else "paused: ") + why
+        for session in sessions:
+            busy = session.busy
+            if busy is not None:
+                text += "  |  " + ("'%s': " % session.name if len(sessions) > 1 else "") + progress_text(
+                    busy.text(), busy.fraction)
+        return text
+
+    def busy(self):
+        """A set-up the run waits for besides the first one (new pins being prepared), or None."""
+        return next((session.busy for session in self.sessions if session.busy is not None), None)
+
+    def panel_title(self):
+        """The sidebar box's first row: "Preparing... 40%", "Stylizing live" or "Converged"."""
+        if self.preparing:
+            return progress_text("Preparing", self.setup.fraction)
+        if self.sessions and len(self.converged) == len(self.sessions):
+            return CONVERGED
+        return "Stylizing live"
+
+    def panel_lines(self):
+        """(text, icon) rows for the sidebar under the title: each object and how far it is."""
+        if self.preparing:
+            return [(plan.name, 'MESH_DATA') for plan in self.planned.plans]
+        lines = []
+        for session in self.sessions:
+            busy = session.busy
+            if busy is not None:
+                lines.append(("%s: %s" % (session.name, progress_text(busy.text(), busy.fraction)), 'TIME'))
+            elif session in self.paused:
+                lines.append(("%s: paused" % session.name, 'PAUSE'))
+            elif session in self.converged:
+                lines.append(("%s: converged, step %d" % (session.name, session.steps), 'CHECKMARK'))
+            else:
+                lines.append(("%s: step %d" % (session.name, session.steps), 'MESH_DATA'))
+        return lines
