@@ -1,10 +1,12 @@
 // gauss_bench MESH [--method gauss|cubic] [--style NAME] [--lambda L] [--sigma S] [--mu M] [--steps N]
-//             [--admm N] [--until TOL] [--threads N] [--out OUT.obj]   (defaults: the solver's, printed by usage())
+//             [--admm N] [--until TOL] [--acceleration on|off] [--threads N] [--out OUT.obj]
+//             (defaults: the solver's, printed by usage())
 // Times set-up and steps of the solver on one mesh and reports how far the style took hold.
 // --lambda is the lambda of the chosen method (settings::lambda or settings::cubic_lambda); the cubic
 // method uses the style's mu and rotation only, and its share is measured against the cube's normals.
 // --until TOL steps until a step's reldV is below TOL (--steps N is then the cap) and reports the
-// steps and milliseconds that took (steps_to_converge, ms_to_converge).
+// steps and milliseconds that took (steps_to_converge, ms_to_converge). --acceleration off runs the
+// plain iteration of Algorithm 1 (to compare with the accelerated default).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -38,11 +40,12 @@ int usage() {
   std::fprintf(stderr,
                "usage: gauss_bench MESH [--method %s] [--style %s] [--lambda %g (cubic: %g)] [--sigma %g] [--mu %g]\n"
                "                   [--steps %d] [--admm %d] [--until TOL (e.g. %g; then --steps is the cap, default %d)]\n"
-               "                   [--threads N] [--out OUT.obj]\n",
+               "                   [--acceleration %s] [--threads N] [--out OUT.obj]\n",
                settings::default_method, settings::default_preset, settings::lambda.default_value,
                settings::cubic_lambda.default_value, settings::sigma.default_value, settings::mu.default_value,
                kDefaultSteps, static_cast<int>(settings::admm_iterations.default_value),
-               settings::tolerance.default_value, kDefaultCap);
+               settings::tolerance.default_value, kDefaultCap,
+               settings::acceleration.default_value ? "on" : "off");
   return 2;
 }
 
@@ -57,6 +60,7 @@ int main(int argc, char** argv) {
   int steps = -1, admm = static_cast<int>(settings::admm_iterations.default_value), threads = 0;
   bool until_converged = false;  // --until given; otherwise exactly `steps` steps
   double until = 0;
+  bool acceleration = settings::acceleration.default_value;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (i + 1 >= argc) return usage();
@@ -70,6 +74,8 @@ int main(int argc, char** argv) {
     else if (a == "--admm") admm = std::atoi(v);
     else if (a == "--threads") threads = std::atoi(v);
     else if (a == "--until") until_converged = true, until = std::atof(v);
+    else if (a == "--acceleration" && (std::strcmp(v, "on") == 0 || std::strcmp(v, "off") == 0))
+      acceleration = std::strcmp(v, "on") == 0;
     else if (a == "--out") out_path = v;
     else return usage();
   }
@@ -85,6 +91,7 @@ int main(int argc, char** argv) {
     if (until_converged) settings::tolerance.check(until);
     if (threads > 0) gauss::parallel::set_max_threads(threads);
     std::printf("threads: %d\n", gauss::parallel::max_threads());
+    std::printf("acceleration: %s\n", acceleration ? "on" : "off");
     gauss::TriangleMesh mesh = gauss::read_mesh(mesh_path);
     std::printf("mesh: %s (%d vertices, %d faces)\n", mesh_path.c_str(), mesh.num_vertices(), mesh.num_faces());
     gauss::StyleParams params = gauss::preset_style(style);
@@ -99,6 +106,7 @@ int main(int argc, char** argv) {
     solver.set_admm_iterations(admm);
     if (cubic) solver.set_cubic_lambda(lambda);
     solver.set_method(method);
+    solver.set_acceleration(acceleration);
     const double setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
     std::vector<double> step_ms, faces, rotations, admm_ms, rhs, solve, cubic_iterations;

@@ -3,8 +3,9 @@
 faces within 10 degrees of an axis (what the cubic method is compared with its reference on).
 
 Converged: reldV = max|U_k - U_{k-1}| / max|U_k - V| over all coordinates < --tol (the reference
-implementation's stopping rule), or --cap steps. Only solver.step() is timed; reading the vertices for
-reldV is not. Runs through gauss_core as the add-on does.
+implementation's stopping rule), or --cap steps, with the plain iteration (acceleration=False). Only
+solver.step() is timed; reading the vertices for reldV is not. Runs through gauss_core as the add-on
+does.
 
 usage: measure_cubic.py MESH [MESH...] [--runs gauss:4 cubic:0.2 cubic:0.4] [--tol 1e-3] [--cap 1000]
                         [--threads N]
@@ -34,7 +35,9 @@ def run(V, F, method, lam, tol, cap):
     to convergence. CPU time (all threads) tells what a step costs when other processes hold the cores."""
     t0 = time.perf_counter()
     keyword = {"cubic_lambda": lam} if method == "cubic" else {"lam": lam}
-    solver = gauss_core.Solver(V, F, method=method, **keyword)
+    # The plain iteration, whose reldV is the one computed here from consecutive iterates (accelerated
+    # runs: gauss_bench --until, scripts/plot_convergence.py).
+    solver = gauss_core.Solver(V, F, method=method, acceleration=False, **keyword)
     setup_ms = (time.perf_counter() - t0) * 1000
     used = np.unique(F)  # unreferenced vertices never move
     previous = solver.vertices[used]

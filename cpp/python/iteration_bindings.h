@@ -1,6 +1,7 @@
 #pragma once
 // gauss_core.Solver's run control: stepping until converged, the read-outs that say how far a run is,
-// what a step does besides Algorithm 1 (keep_volume) and setting the current vertices (a warm start).
+// what a step does besides Algorithm 1 (keep_volume, acceleration) and setting the current vertices
+// (a warm start).
 // Kept apart from module.cpp (the other bindings), which adds these to its Solver class with
 // bind_iteration(). SolverWrapper: module.cpp's Solver (core(): the GaussSolver, mutex(): held around
 // every use of it).
@@ -48,6 +49,14 @@ void bind_iteration(pybind11::class_<SolverWrapper>& cls) {
         s.core().set_keep_volume(on);
       }, "After each step, scale every component without a pin uniformly about its centroid back to its\n"
          "rest volume (closed components) or surface area (open ones). Default: DEFAULTS['keep_volume'].");
+  cls.def_property("acceleration", [](SolverWrapper& s) { return s.core().acceleration(); },
+      [](SolverWrapper& s, bool on) {
+        std::lock_guard<std::mutex> lock(s.mutex());
+        s.core().set_acceleration(on);
+      }, "Accelerate the iteration (momentum with adaptive restart): about a third of the steps to\n"
+         "converge, to the same result. False: the plain iteration of Algorithm 1. Either way every step\n"
+         "ends on a step of Algorithm 1. The Gauss method only: with method 'cubic' steps are plain and\n"
+         "the setting is kept for when the method is 'gauss' again. Default: DEFAULTS['acceleration'].");
   cls.def("set_vertices", [](SolverWrapper& s, const py::object& vertices) {
         const int n = s.core().num_vertices();
         py::array arr = as_array(vertices, "vertices");

@@ -83,7 +83,13 @@ void GaussSolver::set_method(Method method) {
     update_cubic_styles();
   }
   method_ = method;
+  iteration_.set_acceleration(acceleration_ && method_ == Method::gauss);  // see set_acceleration()
   iteration_.invalidate();
+}
+
+void GaussSolver::set_acceleration(bool on) {
+  acceleration_ = on;
+  iteration_.set_acceleration(acceleration_ && method_ == Method::gauss);
 }
 
 void GaussSolver::set_cubic_lambda(double lambda) {
@@ -222,6 +228,7 @@ void GaussSolver::set_vertices(const double* V, int count) {
   }
   laplacian_.place_pins(X_);
   std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
+  if (cubic_ready_) cubic_.reset();  // the cubic method's ADMM warm start, as reset() clears it
   iteration_.invalidate();
 }
 

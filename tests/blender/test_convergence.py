@@ -143,8 +143,11 @@ def test_a_converged_live_run_stops_stepping_and_resumes_on_a_change(addon):
         obj.gauss_stylization.tolerance = 0.5
         live.tick(budget=1e9)
         assert live.tick(budget=1e9).stepped == 0
-        obj.gauss_stylization.tolerance = 1e-3  # the last step's reldV is below it (checked)
-        assert live.tick(budget=1e9).stepped == 0 and session.solver.last_reldv < 1e-3
+        # A tolerance lowered but still above the last step's reldV keeps the object converged (the
+        # accelerated step after the resume can end above 1e-3, so the value is taken from the run).
+        reldv = session.solver.last_reldv
+        obj.gauss_stylization.tolerance = min(0.4, max(2.0 * reldv, 1e-4))
+        assert live.tick(budget=1e9).stepped == 0 and session.solver.last_reldv == reldv
         steps = session.steps
         # Sigma changed in the sidebar: the object steps again by itself, until it converges again.
         obj.gauss_stylization.styles[0].sigma = 9.0

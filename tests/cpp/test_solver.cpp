@@ -25,9 +25,10 @@ PreferenceFunction style(const std::string& name, Matrix3d rotation = Matrix3d::
 }
 
 std::vector<double> run(const TriangleMesh& m, const PreferenceFunction& g, int steps, double lambda = 4.0,
-                        GaussSolver** keep = nullptr) {
+                        bool acceleration = gauss::settings::acceleration.default_value) {
   GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), {}, nullptr, lambda);
   s.set_styles({g});
+  s.set_acceleration(acceleration);
   for (int i = 0; i < steps; ++i) s.step();
   std::vector<double> out(m.V.size());
   s.copy_vertices(out.data());
@@ -82,6 +83,9 @@ TEST(GaussSolver, SphereBecomesCubicAndEgRises) {
   const PreferenceFunction g = style("cube");
   GaussSolver s(sphere.V.data(), sphere.num_vertices(), sphere.F.data(), sphere.num_faces());
   s.set_styles({g});
+  // Algorithm 1's own iteration: with acceleration E_g overshoots its limit by ~1e-5 relative near
+  // the end (the accelerated run's result is checked in test_acceleration.cpp).
+  s.set_acceleration(false);
   const double before = gauss::alignment_share(sphere.V.data(), sphere.F.data(), sphere.num_faces(), g.normals());
   double eg = s.g_energy();
   const double eg0 = eg;
@@ -210,15 +214,21 @@ TEST(GaussSolver, RotatingInputAndStyleTogetherRotatesTheResult) {
     const Vector3d p = R * Vector3d(&sphere.V[3 * v]);
     for (int k = 0; k < 3; ++k) turned.V[3 * v + k] = p[k];
   }
-  const std::vector<double> a = run(sphere, style("tetrahedron"), 50);
-  const std::vector<double> b = run(turned, style("tetrahedron", R), 50);
-  double err = 0;
-  for (int v = 0; v < sphere.num_vertices(); ++v)
-    err = std::max(err, (R * Vector3d(&a[3 * v]) - Vector3d(&b[3 * v])).norm());
+  const auto turned_error = [&](bool acceleration) {
+    const std::vector<double> a = run(sphere, style("tetrahedron"), 50, 4.0, acceleration);
+    const std::vector<double> b = run(turned, style("tetrahedron", R), 50, 4.0, acceleration);
+    double err = 0;
+    for (int v = 0; v < sphere.num_vertices(); ++v)
+      err = std::max(err, (R * Vector3d(&a[3 * v]) - Vector3d(&b[3 * v])).norm());
+    return err / bbox_diagonal(a);
+  };
   // Internally the two runs number vertices differently (spatial order), so they agree up to
-  // rounding, amplified a little by 50 non-linear steps.
-  EXPECT_LT(err, 1e-7 * bbox_diagonal(a));
+  // rounding, amplified a little by 50 non-linear steps; more with acceleration (measured 1e-6),
+  // whose per-vertex restart tests a sign that rounding can flip where a vertex has all but stopped.
+  EXPECT_LT(turned_error(false), 1e-7);
+  EXPECT_LT(turned_error(true), 1e-5);
   // And the style really is oriented: without rotating it the result differs.
+  const std::vector<double> b = run(turned, style("tetrahedron", R), 50);
   const std::vector<double> c = run(turned, style("tetrahedron"), 50);
   EXPECT_GT(max_distance(b, c), 1e-3);
 }
