@@ -22,6 +22,9 @@ import scene_bake  # noqa: E402
 import scene_cube_stays_cube  # noqa: E402
 import scene_cubic_vs_gauss  # noqa: E402
 import scene_extreme  # noqa: E402
+import scene_from_example  # noqa: E402
+import scene_gauss_sphere  # noqa: E402
+import scene_handles  # noqa: E402
 import scene_keep_volume  # noqa: E402
 import scene_kit  # noqa: E402
 import scene_multistyle  # noqa: E402
@@ -30,7 +33,8 @@ import scene_sigma  # noqa: E402
 import scene_styles  # noqa: E402
 
 SCENES = (default_scene, scene_cube_stays_cube, scene_styles, scene_sigma, scene_pins,
-          scene_multistyle, scene_extreme, scene_cubic_vs_gauss, scene_bake, scene_keep_volume)
+          scene_multistyle, scene_extreme, scene_cubic_vs_gauss, scene_bake, scene_keep_volume, scene_handles,
+          scene_from_example, scene_gauss_sphere)
 
 
 def main():

@@ -240,17 +240,21 @@ def snapshot(obj, name):
 
 # -- stylization -------------------------------------------------------------------------
 
-def stylize(obj, styles, iterations=100, **settings):
+def stylize(obj, styles, iterations=100, pin_targets="", **settings):
     """Stylize ``obj`` through the add-on's operator, as a script would.
 
-    ``styles``: slot specs (dicts of slot fields, see settings_io.add_slot); ``settings``:
+    ``styles``: slot specs (dicts of slot fields, see settings_io.add_slot), or None to keep
+    the object's slots; ``pin_targets``: the operator's (moved handles, JSON); ``settings``:
     object settings (lam, pin_group, uncovered, ...); the rest keep the add-on's defaults.
     Returns seconds spent in the operator.
     """
-    addon.settings_io.apply_dict(obj.gauss_stylization, dict(settings, styles=styles, iterations=iterations))
+    settings = dict(settings, iterations=iterations)
+    if styles is not None:
+        settings["styles"] = styles
+    addon.settings_io.apply_dict(obj.gauss_stylization, settings)
     activate(obj)
     start = time.perf_counter()
-    result = bpy.ops.object.gauss_stylize(iterations=iterations)
+    result = bpy.ops.object.gauss_stylize(iterations=iterations, pin_targets=pin_targets)
     seconds = time.perf_counter() - start
     if result != {'FINISHED'}:
         raise RuntimeError("gauss_stylize on %s returned %s" % (obj.name, result))

@@ -18,20 +18,22 @@ bl_info = {
 if "bpy" in locals():  # F8 / script reload: reload the submodules too
     import importlib
     for _module in (errors, native, pc2, fields, schema, properties, mesh_io, source, styles, validation,
-                    cache_modifier, output, rest_store, settings_io, undo_guard, runs, progress, solver_setup,
-                    session, targets, live_run, scripted_run, viewport, modal_events, operators, slot_operators,
-                    ui, bake, bake_operators, bake_ui):
+                    cache_modifier, output, rest_store, settings_io, handles, undo_guard, runs, progress,
+                    solver_setup, session, targets, live_run, scripted_run, viewport, modal_events, directions,
+                    orientation, surface, style_from_data, gauss_sphere, gpu_compat, sphere_overlay,
+                    sphere_editing, handle_tool, operators, slot_operators, ui, bake, bake_operators, bake_ui):
         importlib.reload(_module)
 else:
     from . import (errors, native, pc2, fields, schema, properties, mesh_io, source, styles, validation,
-                   cache_modifier, output, rest_store, settings_io, undo_guard, runs, progress, solver_setup,
-                   session, targets, live_run, scripted_run, viewport, modal_events, operators, slot_operators,
-                   ui, bake, bake_operators, bake_ui)
+                   cache_modifier, output, rest_store, settings_io, handles, undo_guard, runs, progress,
+                   solver_setup, session, targets, live_run, scripted_run, viewport, modal_events, directions,
+                   orientation, surface, style_from_data, gauss_sphere, gpu_compat, sphere_overlay,
+                   sphere_editing, handle_tool, operators, slot_operators, ui, bake, bake_operators, bake_ui)
 
 import bpy
 
-classes = (properties.classes + operators.classes + slot_operators.classes + bake_operators.classes + ui.classes
-           + bake_ui.classes)
+classes = (properties.classes + operators.classes + slot_operators.classes + style_from_data.classes
+           + sphere_editing.classes + bake_operators.classes + ui.classes + bake_ui.classes)
 
 
 def register():
@@ -39,11 +41,17 @@ def register():
         bpy.utils.register_class(cls)
     properties.register_pointer()
     runs.register_handlers()
+    sphere_overlay.register()
+    sphere_editing.register()
+    handle_tool.register()
 
 
 def unregister():
     runs.unregister_handlers()
-    runs.stop_all(bpy.context)
+    runs.stop_all(bpy.context)  # first: a run's end is told to the event handlers below (on_end)
+    handle_tool.unregister()
+    sphere_editing.unregister()
+    sphere_overlay.unregister()
     properties.unregister_pointer()
     for cls in reversed(classes):
         bpy.utils.unregister_class(cls)

@@ -19,14 +19,17 @@ business) or what modal() returns: {'RUNNING_MODAL'} to take the event,
 
 Another feature adds its handler with ``add(handler, order, on_end)`` when it
 registers (and removes it when it unregisters); e.g. pin handles take presses
-on pins at order HANDLES, before a plain click keeps the result. ``on_end(run,
+on pins at order HANDLES, before a plain click keeps the result, and a handle
+being dragged takes its events at DRAGS, before Esc or Enter end the run. ``on_end(run,
 context, keep)``, if given, is called once when the run ends, however it ends,
 before the meshes are kept or restored.
 """
 
 from .viewport import drag_distance_exceeded, free_viewport_at
 
+DRAGS = 50      # a drag in progress (a pin handle): its Esc puts it back, its Enter drops it
 KEYS = 100      # Enter, Esc, Ctrl+Z, Tab
+OVERLAYS = 150  # things drawn over the viewport that take presses (the Gauss sphere), over the pins
 HANDLES = 200   # for things in the viewport that take presses and drags (pin handles)
 CLICKS = 300    # a plain click in the free viewport keeps, a right-click cancels
 

@@ -13,7 +13,7 @@ import time
 import bpy
 from bpy.props import StringProperty
 
-from . import modal_events, rest_store, runs, schema, scripted_run, settings_io
+from . import handles, modal_events, rest_store, runs, schema, scripted_run, settings_io
 from .errors import SettingsError
 from .live_run import LiveRun
 from .progress import ProgressReport
@@ -23,7 +23,8 @@ from .viewport import existing_area, redraw_viewports
 
 TICK_SECONDS = 0.01
 PANEL_SECONDS = 0.25  # how often a live run redraws the sidebar (the viewport: every tick that steps)
-KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel")  # what modal_events does with keys
+KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel",  # what modal_events does with keys
+             "Drag a pin: move its handle")  # and handle_tool
 HINT = "  |  ".join(KEY_HINTS)
 SETUP_HINT = "Esc: cancel"
 EDITS_UNDO_NAME = "Edits during Stylize"  # the undo step of what was edited during a cancelled run
@@ -48,6 +49,10 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
                                     "object's Script Steps setting)" % schema.UNTIL_CONVERGED_CAP)
     # Settings a kept live run ended with, so the redo panel repeats that run (JSON, see settings_io).
     settings_json: StringProperty(options={'HIDDEN', 'SKIP_SAVE'})
+    # Where a kept live run left dragged pins, so the redo panel repeats it; scripts may set it too:
+    # '{"object name": [[x, y, z], ...]}', one target per Pin Group vertex (handles.targets_json).
+    pin_targets: StringProperty(name="Pin Targets", options={'HIDDEN', 'SKIP_SAVE'},
+                                description="New positions of the pinned vertices, JSON by object name")
 
     @classmethod
     def poll(cls, context):
@@ -69,7 +74,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         planned = plan_objects(self, objects)
         if planned is None:
             return {'CANCELLED'}
-        return scripted_run.run(self, context, planned, steps)
+        return scripted_run.run(self, context, planned, steps, self.pin_targets)
 
     # -- interactive: modal on a timer -------------------------------------------
 
@@ -208,6 +213,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             live.keep()
             self.iterations = min(live.steps, _STEPS.hard[1])
             self.settings_json = settings_io.objects_to_json([s.obj for s in live.sessions])
+            self.pin_targets = handles.targets_json(live.sessions)
         try:
             if not keep:
                 live.cancel()  # restores whatever still exists, never freed data

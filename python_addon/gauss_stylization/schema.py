@@ -153,6 +153,11 @@ OBJECT = (
     Int("bake_steps", "Bake Steps", "Solver steps per frame of an animation bake (with Warm Start the "
         "first frame runs Script Steps, the others continue from the previous frame)",
         default=10, hard=(1, 100000), soft=(1, 200), panel=Panel.BAKE),
+    Bool("show_gauss_sphere", "Show Gauss Sphere",
+         "Draw the Gauss sphere in a corner of the 3D view: the active style's g as a heat map, its "
+         "preferred normals as dots and the mesh's face normals as points. With a Custom style active, "
+         "click the sphere to add a normal, drag a dot to move it, right-click to remove the nearest",
+         default=False, panel=Panel.STYLES, text="Gauss Sphere"),
     Slots("styles", "Styles", "GaussStyleSlot", SLOT, owner_name=lambda slot: "Style '%s'" % slot.name),
     Index("active_style_index", "Active Style"),
 )

@@ -8,6 +8,8 @@ an object runs until converged (its last step changed it by less than its
 Tolerance), at most schema.UNTIL_CONVERGED_CAP steps. An object that
 cannot be set up or fails while stepping is restored and skipped with a message
 naming it; the others are kept. The operator's one undo step covers them all.
+Pin targets (handles.targets_json's text) move the named objects' pins before
+the first step; targets that cannot be used stop the whole run, nothing changed.
 """
 
 import math
@@ -15,6 +17,7 @@ import time
 
 from . import schema
 from .errors import SettingsError
+from .handles import apply_targets_json
 from .progress import ProgressReport
 from .session import Session
 from .solver_setup import SolverSetup
@@ -87,12 +90,21 @@ def _until_converged_note(session, steps):
                        % (session.name, steps, session.reldv, session.solver.tolerance, steps))
 
 
-def run(operator, context, planned, steps):
+def run(operator, context, planned, steps, pin_targets=""):
     """Run every planned object ``steps`` steps (None: each object's Script Steps; 0: until
     converged), keep what succeeded and report the rest. Returns the operator's result."""
     notes = []
     with ProgressReport(context, TITLE) as report:
         sessions, failed = _set_up(planned, report)
+        if pin_targets:
+            try:
+                apply_targets_json(sessions, pin_targets)
+            except SettingsError as exc:
+                for session in sessions:
+                    session.cancel()
+                planned.undo_added_slots()
+                operator.report({'ERROR'}, str(exc))
+                return {'CANCELLED'}
         counts = [steps if steps is not None else session.obj.gauss_stylization.iterations
                   for session in sessions]
         # Each object's share of the progress: its steps, or the same for all when one runs until

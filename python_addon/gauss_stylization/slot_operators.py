@@ -14,6 +14,7 @@ from . import native
 from .errors import NativeModuleError
 from .mesh_io import read_selected_faces
 from .schema import CUSTOM
+from .styles import active_slot
 from .validation import poll_result
 
 
@@ -24,10 +25,8 @@ def _settings(context):
 
 def _active_custom_slot(context):
     settings = _settings(context)
-    if settings is None or not 0 <= settings.active_style_index < len(settings.styles):
-        return None
-    slot = settings.styles[settings.active_style_index]
-    return slot if slot.preset == CUSTOM else None
+    slot = None if settings is None else active_slot(settings)
+    return slot if slot is not None and slot.preset == CUSTOM else None
 
 
 class _StyleList:

@@ -2,7 +2,14 @@
 
 import numpy as np
 
+from . import schema
+from .errors import SettingsError
+from .fields import Live, Where, check_all
 from .schema import CUSTOM, PIN_THRESHOLD, REGION_THRESHOLD
+
+# What a slot's style (its g) depends on: the fields whose change rebuilds styles.
+STYLE_FIELDS = tuple(f for f in schema.SLOT if f.live is Live.STYLES)
+_SLOT_NAME = schema.field(schema.OBJECT, "styles").owner_name
 
 
 def rotation_matrix(slot):
@@ -10,17 +17,36 @@ def rotation_matrix(slot):
     return np.array(slot.orientation.to_matrix(), dtype=np.float64)
 
 
-def make_style(gauss_core, slot):
+def active_slot(settings):
+    """The slot selected in the list (settings.active_style_index), or None."""
+    index = settings.active_style_index
+    return settings.styles[index] if 0 <= index < len(settings.styles) else None
+
+
+def make_style(gauss_core, slot, rotation=None, sigma=None):
     """One style slot -> gauss_core.Style (may raise ValueError).
 
-    Every slot field whose change rebuilds styles (Live.STYLES in schema.SLOT) is used here."""
-    rotation = rotation_matrix(slot)
+    Every slot field whose change rebuilds styles (Live.STYLES in schema.SLOT) is used here.
+    rotation, sigma: instead of the slot's orientation and sigma (auto-orient evaluates the
+    unrotated style, and searches with a softer one)."""
+    rotation = rotation_matrix(slot) if rotation is None else np.asarray(rotation, np.float64)
+    sigma = slot.sigma if sigma is None else sigma
     if slot.preset == CUSTOM:
         # The style turns its normals, as a preset's; the cubic method turns its cube by the same rotation.
         normals = np.array(slot.custom_normal_list(), dtype=np.float64).reshape(-1, 3)
-        return gauss_core.Style(normals=normals, rotation=rotation, sigma=slot.sigma, mu=slot.mu)
-    return gauss_core.Style.preset(slot.preset.lower(), sigma=slot.sigma, mu=slot.mu,
+        return gauss_core.Style(normals=normals, rotation=rotation, sigma=sigma, mu=slot.mu)
+    return gauss_core.Style.preset(slot.preset.lower(), sigma=sigma, mu=slot.mu,
                                    rotation=rotation, axis_contribution=slot.axis_contribution)
+
+
+def checked_style(gauss_core, obj, slot, rotation=None, sigma=None):
+    """make_style for one slot of ``obj`` on its own (the sphere overlay, auto-orient): its
+    style fields are checked first, and any problem raises SettingsError naming the slot."""
+    check_all(STYLE_FIELDS, slot, Where(obj, {}, _SLOT_NAME(slot)))
+    try:
+        return make_style(gauss_core, slot, rotation, sigma)
+    except ValueError as exc:
+        raise SettingsError("%s cannot be built: %s" % (_SLOT_NAME(slot), exc)) from exc
 
 
 def make_styles(gauss_core, slots):

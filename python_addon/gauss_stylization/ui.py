@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import native, runs, schema
+from . import native, operators, runs, schema, styles
 from .errors import NativeModuleError
 from .fields import Panel
 from .targets import stylize_objects
@@ -94,14 +94,18 @@ class VIEW3D_PT_gauss_styles(_GaussSubPanel, bpy.types.Panel):
         buttons.separator()
         buttons.operator("object.gauss_style_move", icon='TRIA_UP', text="").direction = 'UP'
         buttons.operator("object.gauss_style_move", icon='TRIA_DOWN', text="").direction = 'DOWN'
+        tools = layout.column(align=True)
+        tools.operator("object.gauss_style_from_object", icon='OBJECT_DATA')
+        tools.operator("object.gauss_style_auto_orient", icon='ORIENTATION_GIMBAL')
         if not settings.styles:
             layout.label(text="Stylize adds a %s style" % schema.DEFAULT_PRESET_LABEL, icon='INFO')
             return
         col = _split_column(layout)
         _draw_rows(col, obj, settings, schema.OBJECT, Panel.STYLES)
-        if 0 <= settings.active_style_index < len(settings.styles):
+        slot = styles.active_slot(settings)
+        if slot is not None:
             col.separator()
-            _draw_rows(col, obj, settings.styles[settings.active_style_index], schema.SLOT, Panel.SLOT)
+            _draw_rows(col, obj, slot, schema.SLOT, Panel.SLOT)
 
 
 def _draw_run_state(layout, run):

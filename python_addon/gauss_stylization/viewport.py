@@ -113,23 +113,31 @@ def navigation_gizmo_rect(area, region, preferences):
     return Rect(left, bottom, visible.xmax, visible.ymax)
 
 
-def free_viewport_at(context, x, y):
-    """Is window point (x, y) in the free part of a 3D view (see the module's docstring)?"""
+def viewport_region_at(context, x, y):
+    """(area, region) of the 3D view drawing region under window point (x, y), or None over
+    a header, the toolbar, the sidebar or the redo panel (they overlap it) and elsewhere."""
     if context.window is None:
-        return False
-    preferences = context.preferences
+        return None
     for area in context.window.screen.areas:
         if area.type != 'VIEW_3D' or not Rect.of(area).contains(x, y):
             continue
         if any(region.type != 'WINDOW' and _shown(region) and Rect.of(region).contains(x, y)
                for region in area.regions):
-            return False  # a header, the toolbar, the sidebar or the redo panel
+            return None
         for region in area.regions:
             if region.type == 'WINDOW' and Rect.of(region).contains(x, y):
-                gizmo = navigation_gizmo_rect(area, region, preferences)
-                return gizmo is None or not gizmo.contains(x, y)
+                return area, region
+        return None
+    return None
+
+
+def free_viewport_at(context, x, y):
+    """Is window point (x, y) in the free part of a 3D view (see the module's docstring)?"""
+    found = viewport_region_at(context, x, y)
+    if found is None:
         return False
-    return False
+    gizmo = navigation_gizmo_rect(*found, context.preferences)
+    return gizmo is None or not gizmo.contains(x, y)
 
 
 def drag_distance_exceeded(context, start, end):

@@ -1,11 +1,13 @@
 #!/bin/sh
-# Drive the live (modal) Stylize operator in a real Blender window under Xvfb, in three parts:
-#   windowed_driver.py    the basics (keys, clicks, shape keys, deleting things, files)
-#   windowed_live_run.py  undo during runs, the gizmo and other clicks, several objects, messages
-#   windowed_quit.py      quitting during a run must not save undo steps 0 in the preferences
+# Drive the live (modal) Stylize operator in a real Blender window under Xvfb, in four parts:
+#   windowed_driver.py       the basics (keys, clicks, shape keys, deleting things, files)
+#   windowed_live_run.py     undo during runs, the gizmo and other clicks, several objects, messages
+#   windowed_interactive.py  the Gauss sphere overlay and editing on it, pin handles dragged live
+#   windowed_quit.py         quitting during a run must not save undo steps 0 in the preferences
 #   tests/blender/run_windowed.sh [BUILD_DIR]
 # Prints each part's result and "windowed summary: N passed, M failed"; exits non-zero on any
-# failure, a crash or a hang. The screenshot of the sidebar panel goes to BUILD_DIR/screenshots/panel.png.
+# failure, a crash or a hang. Screenshots go to BUILD_DIR/screenshots/: the sidebar panel (panel.png),
+# the Gauss sphere overlay (sphere_overlay.png) and a pin handle being dragged (handle_drag.png).
 set -u
 HERE=$(cd "$(dirname "$0")" && pwd)
 BUILD=$(cd "${1:-$HERE/../../build}" && pwd) || { echo "windowed: no build dir"; exit 2; }
@@ -42,6 +44,7 @@ driver() {  # $1: driver script, $2: its result file in $SHOTS
 
 driver windowed_driver.py windowed_result.txt
 driver windowed_live_run.py windowed_live_run_result.txt
+driver windowed_interactive.py windowed_interactive_result.txt
 
 # Quitting: the preferences live in a folder of their own, never the user's.
 CONFIG=$(mktemp -d)

@@ -56,6 +56,7 @@ def _configured(name):
     helpers.add_group(obj, "Top", range(10, 40))
     helpers.activate(obj)
     addon_settings = dict(lam=6.5, admm_iterations=3, iterations=12, output='SHAPE_KEY', pin_group="Pins",
+                          show_gauss_sphere=True,
                           uncovered='UNSTYLED', active_style_index=1, styles=[
                               dict(name="Base", preset='SQUARE_PYRAMID', sigma=7.0, mu=2.0,
                                    orientation=(0.1, 0.2, 0.3), axis_contribution=0.25),

@@ -1,0 +1,57 @@
+"""The surface of an object as the add-on's tools see it now: its coordinates and
+loop triangles, and from them its face normals on the Gauss sphere.
+
+During a live run that is the solver's current shape (whatever the output
+target); otherwise the base mesh, which is what Stylize would start from (shape
+keys are not mixed in).
+"""
+
+import numpy as np
+
+from . import directions, mesh_io, runs
+
+
+_triangles = {}  # "key": a mesh's identity and counts, "triangles": its loop triangles
+
+
+def coords_and_triangles(obj, cached_topology=False):
+    """(coords #V by 3 float32, triangles #T by 3 int32) of ``obj``'s mesh now.
+
+    cached_topology: reuse the triangles read last time for the same mesh with the same
+    vertex, face and corner counts (a viewport overlay redraws far more often than
+    artists change topology; a change that keeps every count shows at the next change)."""
+    session = runs.session_of(obj)
+    if session is not None:
+        current = session.result if session.steps else session.arrays.coords
+        return current, session.arrays.triangles
+    mesh = obj.data
+    coords = np.empty((len(mesh.vertices), 3), np.float32)
+    mesh_io.read_base_coords(mesh, coords)
+    key = (mesh.as_pointer(), len(mesh.vertices), len(mesh.polygons), len(mesh.loops))
+    if not cached_topology or _triangles.get("key") != key:
+        _triangles.update(key=key, triangles=mesh_io.read_loop_triangles(mesh)[0])
+    return coords, _triangles["triangles"]
+
+
+def face_normals(obj, coords=None, triangles=None):
+    """Unit normals (#T by 3) and areas (#T) of the mesh's triangles, in object space."""
+    if coords is None:
+        coords, triangles = coords_and_triangles(obj)
+    return directions.triangle_normals(coords, triangles)
+
+
+def evaluated_face_normals(obj, depsgraph):
+    """Normals and areas of ``obj`` as displayed (modifiers applied), in its own space."""
+    evaluated = obj.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
+    try:
+        coords = mesh_io.read_vertex_coords(mesh)
+        triangles = mesh_io.read_loop_triangles(mesh)[0]
+    finally:
+        evaluated.to_mesh_clear()
+    return directions.triangle_normals(coords, triangles)
+
+
+def world_rotation(obj):
+    """The rotation part (3 by 3) of ``obj``'s world matrix (scale and shear left out)."""
+    return np.array(obj.matrix_world.to_quaternion().to_matrix(), np.float64)

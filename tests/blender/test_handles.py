@@ -1,0 +1,261 @@
+"""Pin handles, headless: the parts of a pin group, moving a handle's targets during a
+run without re-factoring, refusing what the solver refuses, and plain ARAP dragging.
+(Grabbing and dragging with the mouse is tried in a real window: windowed_interactive.py.)"""
+
+import json
+import re
+from types import SimpleNamespace
+
+import bpy
+import numpy as np
+import pytest
+
+import helpers
+
+
+def _pinned_sphere(addon, lam=None, method='GAUSS'):
+    """A UV sphere with two pin handles: a cap at the bottom and one at the top."""
+    obj = helpers.uv_sphere(32, 16)
+    z = helpers.coords(obj)[:, 2]
+    helpers.add_group(obj, "Pins", np.flatnonzero((z < -0.9) | (z > 0.9)))
+    helpers.add_slot(obj, 'CUBE')
+    settings = {"pin_group": "Pins", "method": method}
+    if lam is not None:
+        settings["lam"] = lam
+    helpers.settings_io.apply_dict(obj.gauss_stylization, settings)
+    return obj, addon.session.Session(obj)
+
+
+def test_each_connected_part_of_the_pins_is_one_handle(addon):
+    triangles = np.array([[0, 1, 2], [2, 3, 4], [5, 6, 7], [7, 8, 9]])
+    parts = addon.handles.pin_parts([9, 0, 4, 7, 3, 6, 2], triangles)
+    pins = np.array([9, 0, 4, 7, 3, 6, 2])
+    assert [sorted(pins[p]) for p in parts] == [[6, 7, 9], [0, 2, 3, 4]]  # in the order of their first pin
+    assert addon.handles.pin_parts([], triangles) == []
+    assert len(addon.handles.pin_parts([0, 5], triangles)) == 2  # not joined by a triangle
+
+
+@pytest.mark.parametrize("method", ['GAUSS', 'CUBIC'])
+def test_moving_a_handle_moves_its_pins_without_refactoring_and_the_mesh_follows(addon, method):
+    obj, run = _pinned_sphere(addon, method=method)
+    try:
+        handles = addon.handles.Handles(run)
+        assert len(handles.parts) == 2
+        top = next(k for k, part in enumerate(handles.parts) if handles.targets[part, 2].mean() > 0)
+        run.step(5)
+        before = run.result.copy()
+        offset = np.array([0.4, 0.0, 0.2])
+        moved = handles.targets[handles.parts[top]] + offset
+        assert handles.move(top, moved)
+        run.step(5)
+        pins = handles.pins[handles.parts[top]]
+        assert np.allclose(run.result[pins], moved, atol=1e-6)  # float32 write-back of exact targets
+        other = handles.pins[handles.parts[1 - top]]
+        assert np.array_equal(run.result[other], before[other])  # the other handle stays
+        upper = np.flatnonzero((run.arrays.coords[:, 2] > 0.5) & (run.arrays.coords[:, 2] <= 0.9))
+        assert (run.result[upper, 0] - before[upper, 0]).mean() > 0.1  # the mesh near the top follows
+        assert run.solver.factorization_count == 1 and run.solver.method == method.lower()
+    finally:
+        run.cancel()
+
+
+def test_moving_a_handle_wakes_a_converged_run(addon):
+    """A live run stops stepping a converged object; a moved handle must make it step again."""
+    obj, run = _pinned_sphere(addon)
+    try:
+        run.step_until(2000)
+        assert run.converged
+        handles = addon.handles.Handles(run)
+        assert handles.move(0, handles.targets[handles.parts[0]] + 0.1)
+        assert not run.converged
+    finally:
+        run.cancel()
+
+
+def test_targets_the_solver_refuses_change_nothing(addon):
+    obj, run = _pinned_sphere(addon)
+    try:
+        handles = addon.handles.Handles(run)
+        kept = handles.targets.copy()
+        assert not handles.move(0, np.full((len(handles.parts[0]), 3), 1e20))
+        assert np.array_equal(handles.targets, kept) and np.array_equal(run.solver.pin_positions, kept)
+        run.step(2)
+        assert np.isfinite(run.result).all()
+    finally:
+        run.cancel()
+
+
+def test_cancel_after_dragging_restores_the_mesh_bit_exactly(addon):
+    obj, run = _pinned_sphere(addon)
+    original = helpers.coords(obj)
+    handles = addon.handles.Handles(run)
+    for k in range(1, 6):
+        handles.move(0, handles.targets[handles.parts[0]] + 0.05)
+        run.step()
+    assert not np.array_equal(helpers.coords(obj), original)
+    run.cancel()
+    assert np.array_equal(helpers.coords(obj), original)
+
+
+def test_a_changed_pin_group_rebuilds_the_handles(addon):
+    obj, run = _pinned_sphere(addon)
+    try:
+        handles = addon.handles.Handles(run)
+        z = run.arrays.coords[:, 2]
+        helpers.add_group(obj, "Top", np.flatnonzero(z > 0.9))
+        run.weights = addon.mesh_io.read_group_weights(obj)  # as if the group existed at the start
+        obj.gauss_stylization.pin_group = "Top"
+        assert run.sync_settings() is None
+        assert not handles.current()
+        assert len(addon.handles.Handles(run).parts) == 1
+    finally:
+        run.cancel()
+
+
+def test_lambda_zero_drags_as_plain_arap(addon):
+    """Lambda 0 and every mu 0 both leave only the ARAP energy: the same drag settles in the
+    same shape (lambda 0 gets there faster; 300 steps: 1.6e-6 apart, measured). The cubic
+    method at Cubic Lambda 0 is left out: after the same 300 steps it was 2e-3 away from these."""
+    results = []
+    for lam, mu in ((0.0, 1.0), (4.0, 0.0)):
+        obj, run = _pinned_sphere(addon, lam=lam)
+        start = helpers.coords(obj)
+        obj.gauss_stylization.styles[0].mu = mu
+        run.sync_settings()
+        handles = addon.handles.Handles(run)
+        top = next(k for k, part in enumerate(handles.parts) if handles.targets[part, 2].mean() > 0)
+        handles.move(top, handles.targets[handles.parts[top]] + [0.5, 0.0, 0.0])
+        run.step(300)
+        results.append(run.result.copy())
+        run.cancel()
+        helpers.clear_scene()
+    assert np.allclose(results[0], results[1], atol=1e-5)
+    assert np.abs(results[0] - start).max() > 0.3  # the drag did move the mesh
+
+
+def test_a_script_moves_handles_with_pin_targets(addon):
+    obj = helpers.uv_sphere(32, 16)
+    start = helpers.coords(obj)
+    z = start[:, 2]
+    pins = np.flatnonzero((z < -0.9) | (z > 0.9))
+    helpers.add_group(obj, "Pins", pins)
+    helpers.add_slot(obj, 'CUBE')
+    targets = start[pins].astype(np.float64)
+    targets[z[pins] > 0] += [0.5, 0.0, 0.3]  # the top cap moved, the bottom one kept
+    obj.gauss_stylization.pin_group = "Pins"
+    text = json.dumps({obj.name: targets.tolist()})
+    assert bpy.ops.object.gauss_stylize(iterations=20, pin_targets=text) == {'FINISHED'}
+    after = helpers.coords(obj)
+    assert np.allclose(after[pins], targets.astype(np.float32), atol=1e-6)
+    assert (after[z > 0.5, 0] - start[z > 0.5, 0]).mean() > 0.1  # the mesh near the top followed
+
+
+def test_bad_pin_targets_are_refused_and_change_nothing(addon):
+    obj = helpers.uv_sphere(16, 8)
+    z = helpers.coords(obj)[:, 2]
+    helpers.add_group(obj, "Pins", np.flatnonzero(z > 0.9))
+    helpers.add_slot(obj, 'CUBE')
+    obj.gauss_stylization.pin_group = "Pins"
+    count = int((z > 0.9).sum())
+    original = helpers.coords(obj)
+    cases = [("{not json", "Unreadable pin targets"),
+             (json.dumps([[0, 0, 0]]), "Unreadable pin targets"),
+             (json.dumps({"Elsewhere": [[0, 0, 0]]}), "'Elsewhere', which is not being stylized"),
+             (json.dumps({obj.name: [[0, 0, 0]] * (count + 1)}), "%d targets for %d pinned" % (count + 1, count)),
+             (json.dumps({obj.name: [[1e30, 0, 0]] * count}), "Pin targets of '%s'" % obj.name),
+             (json.dumps({obj.name: [["x", 0, 0]] * count}), "Pin targets of '%s'" % obj.name)]
+    for text, message in cases:
+        with pytest.raises(RuntimeError, match=re.escape(message)):
+            bpy.ops.object.gauss_stylize(iterations=3, pin_targets=text)
+        assert np.array_equal(helpers.coords(obj), original)
+
+
+def test_targets_json_names_only_moved_pins(addon):
+    obj, run = _pinned_sphere(addon)
+    try:
+        assert addon.handles.targets_json([run]) == ""
+        handles = addon.handles.Handles(run)
+        handles.move(0, handles.targets[handles.parts[0]] + 0.1)
+        data = json.loads(addon.handles.targets_json([run]))
+        assert list(data) == [obj.name] and np.allclose(data[obj.name], handles.targets)
+    finally:
+        run.cancel()
+
+
+class _Run:
+    """What the live run's event handlers see of the modal operator (modal_events)."""
+
+    def __init__(self, sessions):
+        self.preparing, self.scratch, self.notes, self.ended = False, {}, {}, []
+        self.live = SimpleNamespace(sessions=sessions)
+
+    @property
+    def sessions(self):
+        return self.live.sessions
+
+    def end(self, context, keep):
+        self.ended.append(keep)
+        return {'FINISHED'} if keep else {'CANCELLED'}
+
+    def show_status(self, context):
+        pass
+
+
+def _key(kind):
+    return SimpleNamespace(type=kind, value='PRESS', mouse_x=0, mouse_y=0, ctrl=False, oskey=False)
+
+
+def _grab(addon, run, session, part):
+    """As if a press had grabbed ``part`` of ``session``'s handles (a press needs a window)."""
+    tool = addon.handle_tool.tool_of(run)
+    handles = tool.handles_of(session)
+    tool.drag = addon.handles.Drag(handles, part, SimpleNamespace(x=0, y=0), None, (0, 0))
+    tool.region = tool.drag.region
+    return tool, handles
+
+
+def test_a_drag_takes_esc_and_enter_before_the_run_and_each_object_has_its_handles(addon):
+    """In a run of two objects a handle of the second is dragged: Esc puts it back and Enter
+    drops it without ending the run (the drag's handler comes before the run's keys); the
+    first object's pins stay; once the drag is over Esc ends the run."""
+    first, first_run = _pinned_sphere(addon)
+    second, second_run = _pinned_sphere(addon)
+    modal_events, handle_tool = addon.modal_events, addon.handle_tool
+    run = _Run([first_run, second_run])
+    try:
+        first_targets = first_run.solver.pin_positions.copy()
+        tool, handles = _grab(addon, run, second_run, 0)
+        assert tool.handles_of(first_run) is not handles
+        start = handles.targets.copy()
+        assert handles.move(0, handles.targets[handles.parts[0]] + [0.3, 0.0, 0.0])
+        assert modal_events.dispatch(run, bpy.context, _key('ESC')) == {'RUNNING_MODAL'}
+        assert run.ended == [] and tool.drag is None and not run.notes[handle_tool.NAME]
+        assert np.array_equal(second_run.solver.pin_positions, start)  # put back
+
+        tool, handles = _grab(addon, run, second_run, 0)
+        moved = handles.targets[handles.parts[0]] + [0.0, 0.2, 0.0]
+        assert handles.move(0, moved)
+        assert modal_events.dispatch(run, bpy.context, _key('RET')) == {'RUNNING_MODAL'}
+        assert run.ended == [] and tool.drag is None
+        assert np.array_equal(second_run.solver.pin_positions[handles.parts[0]], moved)  # dropped there
+        assert np.array_equal(first_run.solver.pin_positions, first_targets)
+        assert modal_events.dispatch(run, bpy.context, _key('ESC')) == {'CANCELLED'}
+        assert run.ended == [False]
+    finally:
+        first_run.cancel()
+        second_run.cancel()
+
+
+def test_a_drag_ends_with_its_run_or_its_object(addon):
+    obj, session = _pinned_sphere(addon)
+    run = _Run([session])
+    try:
+        tool, _handles = _grab(addon, run, session, 0)
+        addon.modal_events.run_ended(run, bpy.context, keep=True)  # on_end
+        assert tool.drag is None
+        tool, _handles = _grab(addon, run, session, 0)
+        bpy.data.objects.remove(obj)
+        assert addon.modal_events.dispatch(run, bpy.context, _key('ESC')) == {'CANCELLED'}
+        assert tool.drag is None and run.ended == [False]
+    finally:
+        session.cancel()
