@@ -16,6 +16,7 @@
 #include "gauss/direction_merge.h"
 #include "gauss/gauss_solver.h"
 #include "gauss/memory_budget.h"
+#include "gauss/normal_field.h"
 #include "gauss/parallel.h"
 #include "gauss/presets.h"
 #include "gauss/progress.h"
@@ -357,6 +358,19 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
       .def_property_readonly("sigma", [](const Style& s) { return s.g->sigma(); })
       .def_property_readonly("mu", [](const Style& s) { return s.g->mu(); })
       .def_property_readonly("axis_contribution", [](const Style& s) { return s.params.axis_contribution; })
+      .def_property_readonly("fit", [](const Style& s) -> py::object {
+             const gauss::NormalField* f = s.g->field();
+             if (f == nullptr) return py::none();
+             py::dict d;
+             d["nodes"] = f->num_nodes();
+             d["max_input_error"] = f->max_input_error();
+             d["tolerance"] = gauss::NormalField::kTolerance;
+             d["truncation_bound"] = f->truncation_bound();
+             return d;
+           },
+           "None when g sums every preferred normal exactly (at most 64); with more, how it stands for them:\n"
+           "{'nodes', 'max_input_error': max |g(n_k) - 1| over the normals, measured, 'tolerance': its stated\n"
+           "bound, 'truncation_bound': what the skipped terms can change g by}.")
       .def_property_readonly("rotation", [](const Style& s) {
              py::array_t<double> R({3, 3});
              auto w = R.mutable_unchecked<2>();

@@ -1,7 +1,8 @@
-// Prints the solver's settings table, its options, preset registry and methods (settings.h, presets.h) as
-// JSON: the same facts gauss_core exports as DEFAULTS, LIMITS, PRESETS and METHODS. The build writes
-// this to the staged add-on's core_facts.json, which the add-on reads when the native module cannot be loaded (another
-// Python, a missing runtime): its properties then still register with the solver's defaults and ranges.
+// Prints the solver's settings table, its options, preset registry, methods and size limits (settings.h,
+// presets.h) as JSON: the same facts gauss_core exports as DEFAULTS, LIMITS, PRESETS, METHODS and
+// SIZE_LIMITS. The build writes this to the staged add-on's core_facts.json, which the add-on reads when
+// the native module cannot be loaded (another Python, a missing runtime): its properties then still
+// register with the solver's defaults and ranges.
 #include <cstdio>
 #include <string>
 
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
     std::printf("%s\"%s\"", first ? "" : ", ", name);
     first = false;
   }
-  std::printf("]\n}\n");
+  std::printf("],\n  \"SIZE_LIMITS\": {\"normals\": %d, \"rings\": %d}\n}\n", settings::max_style_normals,
+              settings::max_style_rings);
   return 0;
 }

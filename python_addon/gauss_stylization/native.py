@@ -25,7 +25,8 @@ FACTS_FILE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "core_fact
 # limits:   {name: (min, max)}, inclusive;
 # presets:  preset names; the position of each is its enum number in saved .blend files.
 # methods:  stylization method names ("gauss", "cubic"), numbered the same way.
-Facts = namedtuple("Facts", "defaults limits presets methods")
+# sizes:    {"normals": .., "rings": ..}: the most a style takes (settings.h).
+Facts = namedtuple("Facts", "defaults limits presets methods sizes")
 
 def load_failure_message(exc):
     """What the artist reads when ``gauss_core`` cannot be imported: why, and which build fixes it.
@@ -94,7 +95,8 @@ def facts():
         except NativeModuleError as exc:
             _facts = read_facts_file(FACTS_FILE, exc)
         else:
-            _facts = _checked_facts(module.DEFAULTS, module.LIMITS, module.PRESETS, module.METHODS)
+            _facts = _checked_facts(module.DEFAULTS, module.LIMITS, module.PRESETS, module.METHODS,
+                                    module.SIZE_LIMITS)
     return _facts
 
 
@@ -112,11 +114,12 @@ def ring_presets():
 
 
 def read_facts_file(path, import_error=None):
-    """Facts from a core_facts.json ({"DEFAULTS": .., "LIMITS": .., "PRESETS": .., "METHODS": ..})."""
+    """Facts from a core_facts.json (keys DEFAULTS, LIMITS, PRESETS, METHODS, SIZE_LIMITS)."""
     try:
         with open(path, encoding="utf-8") as handle:
             data = json.load(handle)
-        return _checked_facts(data["DEFAULTS"], data["LIMITS"], data["PRESETS"], data["METHODS"])
+        return _checked_facts(data["DEFAULTS"], data["LIMITS"], data["PRESETS"], data["METHODS"],
+                              data["SIZE_LIMITS"])
     except (OSError, ValueError, KeyError, TypeError) as exc:
         raise NativeModuleError(
             "The add-on cannot read the solver's settings: %s, and %s is unreadable (%s). "
@@ -124,13 +127,14 @@ def read_facts_file(path, import_error=None):
                                                              path, exc)) from exc
 
 
-def _checked_facts(defaults, limits, presets, methods):
+def _checked_facts(defaults, limits, presets, methods, sizes):
     limits = {name: (low, high) for name, (low, high) in dict(limits).items()}
     presets = tuple(str(name) for name in presets)
     methods = tuple(str(name) for name in methods)
     defaults = dict(defaults)
+    sizes = {name: int(value) for name, value in dict(sizes).items()}
     if (not presets or defaults.get("preset") not in presets or defaults.get("method") not in methods
-            or not set(limits) <= set(defaults)):
-        raise ValueError("inconsistent solver facts (defaults %r, limits %r, presets %r, methods %r)"
-                         % (defaults, limits, presets, methods))
-    return Facts(defaults, limits, presets, methods)
+            or not set(limits) <= set(defaults) or set(sizes) != {"normals", "rings"}):
+        raise ValueError("inconsistent solver facts (defaults %r, limits %r, presets %r, methods %r, sizes %r)"
+                         % (defaults, limits, presets, methods, sizes))
+    return Facts(defaults, limits, presets, methods, sizes)

@@ -44,6 +44,7 @@ def test_the_json_facts_of_the_build_are_the_modules(addon):
     assert from_file.limits == dict(gauss_core.LIMITS)
     assert from_file.presets == tuple(gauss_core.PRESETS)
     assert from_file.methods == tuple(gauss_core.METHODS)
+    assert from_file.sizes == dict(gauss_core.SIZE_LIMITS)
     assert addon.native.facts() == from_file
 
 

@@ -149,11 +149,12 @@ def live_operator():
 
 
 def wait_steps(count, limit=30.0):
-    """Generator: wait until the live run has done ``count`` steps."""
+    """Generator: wait until the live run has done ``count`` steps or its object has converged (a
+    converged object is not stepped until something changes: the run goes on without steps)."""
     deadline = time.monotonic() + limit
     while time.monotonic() < deadline:
         op = live_operator()
-        if op is not None and op.session is not None and op.session.steps >= count:
+        if op is not None and op.session is not None and (op.session.steps >= count or op.session.converged):
             return
         yield 0.05
 
@@ -181,7 +182,8 @@ def goes_on(name, more=3):
     steps = op.session.steps if op and op.session else 0
     yield from wait_steps(steps + more)
     op = live_operator()
-    check(name, op is not None and op.session is not None and op.session.steps >= steps + more)
+    check(name, op is not None and op.session is not None and
+          (op.session.steps >= steps + more or op.session.converged))
 
 
 def end_with(key, name, obj_name, expected):

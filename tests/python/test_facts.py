@@ -1,6 +1,6 @@
-"""The settings table, preset registry and methods as gauss_core exports them (DEFAULTS, LIMITS, PRESETS,
-METHODS), as the
-build writes them for the add-on (core_facts.json), and as the solver enforces them."""
+"""The settings table, preset registry, methods and size limits as gauss_core exports them (DEFAULTS,
+LIMITS, PRESETS, METHODS, SIZE_LIMITS), as the build writes them for the add-on (core_facts.json), and as
+the solver enforces them."""
 import json
 import math
 
@@ -47,8 +47,9 @@ def test_the_preset_registry_order_is_unchanged():
 
 def test_core_facts_json_written_by_the_build_equals_the_exports():
     facts = json.loads((BUILD / "addon" / "gauss_stylization" / "core_facts.json").read_text())
-    assert set(facts) == {"DEFAULTS", "LIMITS", "PRESETS", "METHODS"}
+    assert set(facts) == {"DEFAULTS", "LIMITS", "PRESETS", "METHODS", "SIZE_LIMITS"}
     assert tuple(facts["METHODS"]) == gauss_core.METHODS
+    assert facts["SIZE_LIMITS"] == gauss_core.SIZE_LIMITS
     assert facts["DEFAULTS"] == gauss_core.DEFAULTS
     for name, value in facts["DEFAULTS"].items():  # 4.0 stays a float, 1 an int
         assert type(value) is type(gauss_core.DEFAULTS[name]), name

@@ -34,8 +34,8 @@ struct StyleParams {
 //
 // Up to kExactNormals discrete normals (every preset, small custom sets) the weights are solved
 // exactly and every term is summed. More normals (up to settings::max_style_normals) go through a
-// NormalField: near-parallel normals merged, weights solved sparsely, only the terms near x summed,
-// within the tolerances normal_field.h states.
+// NormalField: a lattice where they cover the sphere densely, near-parallel ones merged elsewhere,
+// weights solved sparsely, only the terms near x summed, within the tolerances normal_field.h states.
 class PreferenceFunction {
  public:
   // Throws std::invalid_argument with a readable message on nonsense parameters.

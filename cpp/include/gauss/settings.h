@@ -87,9 +87,9 @@ inline constexpr const Option* options[] = {&keep_volume, &acceleration};
 inline constexpr double momentum = 0.8;
 inline constexpr int momentum_hold = 4;
 
-// Sizes. A style's preferred normals: set-up is O(K log K) up to this many (normal_field.h); bigger
-// sets are refused with a message that points to gauss_core.merge_directions. Rings: their weights
-// are solved densely (R by R).
+// Sizes (exported as gauss_core.SIZE_LIMITS and written to core_facts.json). A style's preferred
+// normals: set-up is O(K log K) up to this many (normal_field.h); bigger sets are refused with a
+// message that points to gauss_core.merge_directions. Rings: their weights are solved densely (R by R).
 inline constexpr int max_style_normals = 100000;
 inline constexpr int max_style_rings = 256;
 
