@@ -1,12 +1,11 @@
 """The gauss_core Python API as the add-on and scripts use it."""
-import threading
-import time
 
 import numpy as np
 import pytest
 
 import gauss_core
 from conftest import SHARED_MESHES
+from gil import run_beside_python
 from meshes import icosphere, read_obj
 from measures import aligned_share
 
@@ -103,24 +102,9 @@ def test_step_releases_the_gil():
     """While one thread steps, another keeps running Python (Blender's UI thread must not freeze)."""
     V, F = icosphere(5)
     s = gauss_core.Solver(V, F)
-    timing = {}
-
-    def run():
-        start = time.perf_counter()
-        s.step(20)
-        timing["step"] = time.perf_counter() - start
-
-    t = threading.Thread(target=run)
-    last = time.perf_counter()
-    longest_pause = 0.0
-    t.start()
-    while t.is_alive():  # with the GIL held by step() this loop would stall for the whole call
-        now = time.perf_counter()
-        longest_pause = max(longest_pause, now - last)
-        last = now
-    t.join()
-    assert timing["step"] > 0.02  # long enough for the comparison to mean something
-    assert longest_pause < 0.5 * timing["step"], (longest_pause, timing["step"])
+    _, seconds, longest_pause = run_beside_python(lambda: s.step(20))
+    assert seconds > 0.02  # long enough for the comparison to mean something
+    assert longest_pause < 0.5 * seconds, (longest_pause, seconds)
 
 
 @pytest.mark.parametrize("call, message", [

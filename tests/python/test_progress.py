@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import gauss_core
+from gil import run_beside_python
 from meshes import icosphere
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
@@ -144,24 +145,9 @@ def test_cancelled_set_pins_keeps_the_previous_pins(big_mesh):
 def test_set_up_releases_the_gil(big_mesh):
     """While one thread sets up, another keeps running Python (Blender's UI must stay responsive)."""
     V, F = big_mesh
-    timing = {}
-
-    def run():
-        start = time.perf_counter()
-        gauss_core.Solver(V, F)
-        timing["set_up"] = time.perf_counter() - start
-
-    t = threading.Thread(target=run)
-    last = time.perf_counter()
-    longest_pause = 0.0
-    t.start()
-    while t.is_alive():  # with the GIL held by the set-up this loop would stall for all of it
-        now = time.perf_counter()
-        longest_pause = max(longest_pause, now - last)
-        last = now
-    t.join()
-    assert timing["set_up"] > 0.1
-    assert longest_pause < 0.3 * timing["set_up"], (longest_pause, timing["set_up"])
+    _, seconds, longest_pause = run_beside_python(lambda: gauss_core.Solver(V, F))
+    assert seconds > 0.1
+    assert longest_pause < 0.3 * seconds, (longest_pause, seconds)
 
 
 def test_too_big_for_the_memory_raises_memory_error(big_mesh, monkeypatch):
