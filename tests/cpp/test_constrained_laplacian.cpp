@@ -32,10 +32,8 @@ struct Fixture {
 
   Fixture() {
     const gauss::TriangleMesh a = gauss_test::icosphere(2), b = gauss_test::icosphere(1);
-    mesh = a;
+    mesh = gauss_test::beside(a, b);
     first_sphere_size = a.num_vertices();
-    for (size_t i = 0; i < b.V.size(); ++i) mesh.V.push_back(b.V[i] + (i % 3 == 0 ? 3.0 : 0.0));
-    for (int64_t i : b.F) mesh.F.push_back(i + first_sphere_size);
     mesh.V.insert(mesh.V.end(), {5.0, 5.0, 5.0});
     topo = gauss::build_mesh_topology(mesh.num_vertices(), mesh.F.data(), mesh.num_faces());
     for (size_t e = 0; e < topo.edges.size(); ++e) weight.push_back(0.5 + 0.1 * static_cast<double>(e % 7));

@@ -75,6 +75,15 @@ inline gauss::TriangleMesh grid_cube(int n) {
   return m;
 }
 
+// One mesh of two components: `a`, and `b` moved by 3 along x (the vertices of b follow a's).
+inline gauss::TriangleMesh beside(const gauss::TriangleMesh& a, const gauss::TriangleMesh& b) {
+  gauss::TriangleMesh m = a;
+  const int64_t offset = a.num_vertices();
+  for (size_t i = 0; i < b.V.size(); ++i) m.V.push_back(b.V[i] + (i % 3 == 0 ? 3.0 : 0.0));
+  for (int64_t i : b.F) m.F.push_back(i + offset);
+  return m;
+}
+
 inline std::string shared_mesh(const std::string& rel) { return std::string(GAUSS_MESH_DIR) + "/" + rel; }
 
 }  // namespace gauss_test

@@ -283,10 +283,8 @@ TEST(GaussSolver, OneAndTwoThreadsAreBitIdentical) {
 
 TEST(GaussSolver, UnreferencedVerticesStayPutAndComponentsDoNotDrift) {
   TriangleMesh a = gauss_test::icosphere(2), b = gauss_test::icosphere(1);
-  TriangleMesh m = a;
-  const int offset = m.num_vertices();
-  for (size_t i = 0; i < b.V.size(); ++i) m.V.push_back(b.V[i] + (i % 3 == 0 ? 3.0 : 0.0));
-  for (int64_t i : b.F) m.F.push_back(i + offset);
+  TriangleMesh m = gauss_test::beside(a, b);
+  const int offset = a.num_vertices();
   m.V.insert(m.V.end(), {7.0, 8.0, 9.0});  // unreferenced
   const std::vector<double> out = run(m, style("cube"), 40);
   ASSERT_TRUE(all_finite(out));

@@ -37,11 +37,7 @@ TEST(StepAllocations, StepsDoNotAllocate) {
   // Large enough for the parallel paths (more than 4096 faces), with pins (on one of two components:
   // Keep Volume scales the other), two styles (one with rings), an unstyled face and several ADMM
   // rounds, so every branch of a step runs.
-  gauss::TriangleMesh m = gauss_test::icosphere(5);
-  const gauss::TriangleMesh second = gauss_test::icosphere(2);
-  const int offset = m.num_vertices();
-  for (size_t i = 0; i < second.V.size(); ++i) m.V.push_back(second.V[i] + (i % 3 == 0 ? 3.0 : 0.0));
-  for (int64_t i : second.F) m.F.push_back(i + offset);
+  const gauss::TriangleMesh m = gauss_test::beside(gauss_test::icosphere(5), gauss_test::icosphere(2));
   gauss::GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), {0, 17});
   s.set_styles({gauss::PreferenceFunction(gauss::preset_style("cube")),
                 gauss::PreferenceFunction(gauss::preset_style("double_cone"))});

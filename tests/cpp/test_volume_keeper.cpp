@@ -78,10 +78,8 @@ TEST(KeepVolume, AnOpenMeshKeepsItsArea) {
 TEST(KeepVolume, PinnedComponentsAreLeftAlone) {
   // Two spheres; the second has a pin.
   const TriangleMesh a = gauss_test::icosphere(3);
-  TriangleMesh m = a;
+  const TriangleMesh m = gauss_test::beside(a, a);
   const int offset = a.num_vertices();
-  for (size_t i = 0; i < a.V.size(); ++i) m.V.push_back(a.V[i] + (i % 3 == 0 ? 3.0 : 0.0));
-  for (int64_t i : a.F) m.F.push_back(i + offset);
   const std::vector<int64_t> pins = {offset};
   const std::vector<double> kept = converged(m, true, pins), plain = converged(m, false, pins);
   const size_t nF = a.F.size() / 3;
