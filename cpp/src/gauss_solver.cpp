@@ -207,7 +207,6 @@ void GaussSolver::admm_round(bool first_round) {
     int count = 0;
     double mu[2];
     const Vector3d* nrm[2];
-    Matrix3d A = Matrix3d::Identity();
     Vector3d b = cur;
     for (int i = topo_.edge_slot_start[e]; i < topo_.edge_slot_start[e + 1]; ++i) {
       const int f = topo_.edge_slots[i] / 3, k = topo_.edge_slots[i] % 3;
@@ -219,7 +218,6 @@ void GaussSolver::admm_round(bool first_round) {
         mu[count] = m;
         nrm[count] = &n;
       }
-      A.noalias() += m * (n * n.transpose());
       ++count;
     }
     if (count == 0) {
@@ -233,7 +231,12 @@ void GaussSolver::admm_round(bool first_round) {
       const double det = a00 * a11 - a01 * a10;  // >= 1 + mu0 + mu1 > 0 for unit normals
       const double y0 = (a11 * r0 - a01 * r1) / det, y1 = (a00 * r1 - a10 * r0) / det;
       edge_star_[e] = b - y0 * n0 - y1 * n1;
-    } else {
+    } else {  // non-manifold: the 3x3 system itself, built only here (the common cases never read it)
+      Matrix3d A = Matrix3d::Identity();
+      for (int i = topo_.edge_slot_start[e]; i < topo_.edge_slot_start[e + 1]; ++i) {
+        const int f = topo_.edge_slots[i] / 3;
+        if (face_mu_[f] != 0.0) A.noalias() += face_mu_[f] * (normal_star_[f] * normal_star_[f].transpose());
+      }
       Vector3d x;
       edge_star_[e] = solve_symmetric3(A, b, x) ? x : cur;  // A >= I: always solvable
     }
