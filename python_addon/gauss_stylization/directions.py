@@ -21,8 +21,9 @@ def triangle_normals(coords, triangles):
     Returns (normals #T by 3 float64, areas #T float64); a zero-area triangle has
     area 0 and normal (0, 0, 0), so weighting by area ignores it.
     """
-    coords = np.asarray(coords, np.float64)
-    corners = coords[triangles]
+    # Index first, then widen: the overlay passes a few thousand sampled triangles of a mesh that
+    # may have millions of vertices, on every redraw.
+    corners = np.asarray(coords)[triangles].astype(np.float64)
     cross = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     twice_area = np.sqrt(np.einsum("ij,ij->i", cross, cross))
     normals = np.zeros_like(cross)

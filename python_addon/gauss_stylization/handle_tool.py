@@ -37,7 +37,6 @@ class HandleTool:
     def __init__(self):
         self.handles = {}  # session -> Handles
         self.drag = None
-        self.region = None
 
     def handles_of(self, session):
         found = self.handles.get(session)
@@ -68,7 +67,6 @@ class HandleTool:
         if best is None:
             return None
         self.drag = Drag(best[0], best[1], region, region.data, (x, y))
-        self.region = region
         area.tag_redraw()
         return {'RUNNING_MODAL'}
 
@@ -78,7 +76,7 @@ class HandleTool:
         if not usable(drag.handles.session) or not drag.handles.current():
             self.drop()  # its object went away, or its Pin Group changed under the drag
             return None
-        mouse = (event.mouse_x - self.region.x, event.mouse_y - self.region.y)
+        mouse = (event.mouse_x - drag.region.x, event.mouse_y - drag.region.y)
         if event.type in MOVES:
             drag.update(mouse)
         elif event.type in AXES and event.value == 'PRESS':
@@ -96,7 +94,7 @@ class HandleTool:
         return {'RUNNING_MODAL'}
 
     def drop(self):
-        self.drag = self.region = None
+        self.drag = None
 
     def grabbed(self, session):
         """The vertex indices of ``session``'s pins being dragged (empty if none)."""

@@ -121,8 +121,9 @@ def draw(context):
     dots = preferred @ turn.T
     front, back = dots[dots[:, 2] > 0], dots[dots[:, 2] <= 0]
     gpu_compat.draw_points(gauss_sphere.to_pixels(back, where), DOT_BEHIND, 5.0)
-    gpu_compat.draw_points(gauss_sphere.to_pixels(front, where), DOT_EDGE, 11.0)
-    gpu_compat.draw_points(gauss_sphere.to_pixels(front, where), DOT, 7.0)
+    front_pixels = gauss_sphere.to_pixels(front, where)
+    gpu_compat.draw_points(front_pixels, DOT_EDGE, 11.0)
+    gpu_compat.draw_points(front_pixels, DOT, 7.0)
     _label(where, "%s%s" % (slot.name if slot else "Gauss sphere", "  (%s)" % problem if problem else ""))
     gpu.state.blend_set('NONE')
 
