@@ -212,6 +212,7 @@ TEST(Cubic, TheSameForAnyThreadCount) {
   gauss::parallel::set_max_threads(saved);
   EXPECT_EQ(results[0], results[1]);
   EXPECT_EQ(results[0], results[2]);
+  EXPECT_GT(share(sphere, results[0]), share(sphere, sphere.V) + 0.02);  // it did stylize
 }
 
 TEST(Cubic, BadSettingsAreRefusedAndChangeNothing) {
@@ -225,6 +226,7 @@ TEST(Cubic, BadSettingsAreRefusedAndChangeNothing) {
   // The limits themselves are accepted and stay finite.
   for (double lambda : {gauss::settings::cubic_lambda.min, gauss::settings::cubic_lambda.max}) {
     auto c = cubic_solver(sphere, lambda);
+    EXPECT_EQ(c->cubic_lambda(), lambda);  // taken as given, not clamped
     for (double x : run(*c, 20)) ASSERT_TRUE(std::isfinite(x));
   }
 }
