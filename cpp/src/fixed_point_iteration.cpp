@@ -26,7 +26,7 @@ double relative_change(const std::vector<Vector3d>& from, const std::vector<Vect
 FixedPointIteration::FixedPointIteration(int num_vertices)
     : point_(num_vertices),
       current_(num_vertices),
-      momentum_(num_vertices, Vector3d::Zero()),
+      velocity_(num_vertices, Vector3d::Zero()),
       agreement_(num_vertices, 0.0),
       hold_(num_vertices, 0) {}
 
@@ -35,31 +35,48 @@ void FixedPointIteration::restart() {
   std::fill(hold_.begin(), hold_.end(), 0);
 }
 
-void FixedPointIteration::move_to_momentum_point(std::vector<Vector3d>& X) {
+void FixedPointIteration::move_to_momentum_point(std::vector<Vector3d>& X, std::vector<Vector3d>& carried) {
   const int n = static_cast<int>(X.size());
-  if (!(accelerate_ && has_momentum_)) {
+  if (accelerate_ && carried.size() != carried_velocity_.size()) {
+    // A change of method: once, not per step.
+    carried_current_.resize(carried.size());
+    carried_velocity_.resize(carried.size());
+    restart();
+  }
+  extrapolated_ = accelerate_ && has_momentum_;
+  if (!extrapolated_) {
     point_ = X;  // same sizes: no allocation
-    if (accelerate_) current_ = X;
+    if (accelerate_) {
+      current_ = X;
+      carried_current_ = carried;
+    }
     return;
   }
-  const double beta = settings::momentum;
+  const double beta = momentum_.beta;
+  const int k = n > 0 ? static_cast<int>(carried.size()) / n : 0;
   parallel::for_each(n, parallel::kMinParallelItems, [&](int v) {
     current_[v] = X[v];
-    if (hold_[v] == 0) X[v] += beta * momentum_[v];
+    for (int j = k * v; j < k * v + k; ++j) carried_current_[j] = carried[j];
+    if (hold_[v] == 0) {
+      X[v] += beta * velocity_[v];
+      for (int j = k * v; j < k * v + k; ++j) carried[j] += beta * carried_velocity_[j];
+    }
     point_[v] = X[v];
   });
 }
 
-void FixedPointIteration::update_momentum(const std::vector<Vector3d>& X) {
+void FixedPointIteration::update_momentum(const std::vector<Vector3d>& X, const std::vector<Vector3d>& carried) {
   const int n = static_cast<int>(X.size());
   const bool had_momentum = has_momentum_;
+  const int k = n > 0 ? static_cast<int>(carried.size()) / n : 0;
   parallel::for_each(n, parallel::kMinParallelItems, [&](int v) {
     if (had_momentum) {
-      agreement_[v] = (X[v] - point_[v]).dot(momentum_[v]);
-      if (agreement_[v] < 0) hold_[v] = static_cast<uint8_t>(settings::momentum_hold);
+      agreement_[v] = (X[v] - point_[v]).dot(velocity_[v]);
+      if (agreement_[v] < 0) hold_[v] = static_cast<uint8_t>(momentum_.hold);
       else if (hold_[v] > 0) --hold_[v];
     }
-    momentum_[v] = X[v] - current_[v];
+    velocity_[v] = X[v] - current_[v];
+    for (int j = k * v; j < k * v + k; ++j) carried_velocity_[j] = carried[j] - carried_current_[j];
   });
   has_momentum_ = true;
   if (!had_momentum) return;

@@ -290,7 +290,7 @@ void GaussSolver::local_global_step() {
     timings_.faces = ms_since(t0);
     timings_.rotations = 0;
     t0 = Clock::now();
-    cubic_.fit(topo_, cubic_lambda_, rotation_, rotation_q_);
+    cubic_.fit(topo_, cubic_lambda_, iteration_.extrapolated(), rotation_, rotation_q_);
   }
   timings_.admm = ms_since(t0);
   t0 = Clock::now();
@@ -306,10 +306,12 @@ void GaussSolver::step() {
   const parallel::ScopedThreads scoped(threads);
   const auto start = Clock::now();
   // The normalized frame's longest bounding-box side is 1.
-  iteration_.advance(X_, rest_, 1.0, [this] {
+  const auto step = [this] {
     local_global_step();
     if (keep_volume_) volume_.restore(topo_, X_);
-  });
+  };
+  if (method_ == Method::cubic) iteration_.advance(X_, cubic_.carried_state(), rest_, 1.0, step);
+  else iteration_.advance(X_, rest_, 1.0, step);
   ++step_count_;
   tuner_.record(threads, ms_since(start));
   timings_.threads = threads;

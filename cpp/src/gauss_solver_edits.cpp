@@ -83,13 +83,13 @@ void GaussSolver::set_method(Method method) {
     update_cubic_styles();
   }
   method_ = method;
-  iteration_.set_acceleration(acceleration_ && method_ == Method::gauss);  // see set_acceleration()
+  set_acceleration(acceleration_);
   iteration_.invalidate();
 }
 
 void GaussSolver::set_acceleration(bool on) {
   acceleration_ = on;
-  iteration_.set_acceleration(acceleration_ && method_ == Method::gauss);
+  iteration_.set_acceleration(on, method_ == Method::cubic ? settings::cubic_momentum : settings::gauss_momentum);
 }
 
 void GaussSolver::set_cubic_lambda(double lambda) {

@@ -1,5 +1,5 @@
 // Acceleration (fixed_point_iteration.h): the same result as the plain iteration in fewer steps,
-// deterministic for any thread count, off when asked, and not for the cubic method.
+// for both methods, deterministic for any thread count, and off when asked.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -53,9 +53,11 @@ void expect_same_result_in_fewer_steps(const gauss::TriangleMesh& m, double max_
   EXPECT_LT(fast.steps, max_step_ratio * plain.steps) << plain.steps << " -> " << fast.steps;
   EXPECT_NEAR(fast.share, plain.share, 0.02);
   // reldV < 1e-3 leaves each run a little short of the fixed point, the plain one more (it creeps):
-  // measured up to 0.1% apart in E_g and 0.5% in E_ARAP; the same fixed point is checked below.
-  EXPECT_NEAR(fast.e_g, plain.e_g, 5e-3 * std::abs(plain.e_g));
-  EXPECT_NEAR(fast.e_arap, plain.e_arap, 3e-2 * plain.e_arap);
+  // measured up to 0.1% apart in E_g and 0.5% in E_ARAP; the cubic method creeps further (0.5% in
+  // E_cubic, 5% in E_ARAP). The same fixed point is checked below.
+  const bool gauss = method == gauss::Method::gauss;
+  EXPECT_NEAR(fast.e_g, plain.e_g, (gauss ? 5e-3 : 2e-2) * std::abs(plain.e_g));
+  EXPECT_NEAR(fast.e_arap, plain.e_arap, (gauss ? 3e-2 : 0.15) * plain.e_arap);
 }
 
 }  // namespace
@@ -75,49 +77,60 @@ TEST(Acceleration, ReachesThePlainResultInFewerSteps) {
   expect_same_result_in_fewer_steps(gauss::read_mesh(spot), 0.5);
 }
 
-TEST(Acceleration, LeavesTheCubicMethodPlain) {
-  // The cubic local step's ADMM state carries over between steps; momentum on the vertices alone
-  // stopped it short of the plain result (measured: 35K bunny 328 -> 159 steps but share 0.552 ->
-  // 0.475), so its steps stay plain whatever the setting, and the setting survives the method.
+TEST(Acceleration, ReachesTheCubicMethodsPlainResultInFewerSteps) {
+  // The cubic method's carried ADMM state is extrapolated with the vertices. Momentum on the vertices
+  // alone stopped it short of the plain result (35K bunny: share 0.552 -> 0.475), and so did
+  // rebalancing rho on the extrapolation (0.52). Measured: icosphere(4) 62 -> 19 steps;
+  // 6K bunny 243 -> 40 (shares 0.4718 and 0.4697).
+  expect_same_result_in_fewer_steps(gauss_test::icosphere(4), 0.5, gauss::Method::cubic);
+  const std::string bunny = gauss_test::shared_mesh("bunny/bunny_cubicstylization_6172.obj");
+  if (!std::ifstream(bunny).good()) GTEST_SKIP() << "../shared/meshes not present";
+  expect_same_result_in_fewer_steps(gauss::read_mesh(bunny), 1.0 / 3, gauss::Method::cubic);
+}
+
+TEST(Acceleration, FollowsTheMethod) {
+  // The setting survives a change of method, and each method's steps take it.
   const gauss::TriangleMesh m = gauss_test::icosphere(3);
-  const Converged plain = converge(m, false, gauss::Method::cubic), set = converge(m, true, gauss::Method::cubic);
-  EXPECT_EQ(set.steps, plain.steps);
-  EXPECT_EQ(set.vertices, plain.vertices);
   GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces());
   s.set_method(gauss::Method::cubic);
   EXPECT_TRUE(s.acceleration());
-  EXPECT_FALSE(s.accelerated());
   s.set_acceleration(false);
-  s.set_acceleration(true);
-  EXPECT_FALSE(s.accelerated());
   s.set_method(gauss::Method::gauss);
-  EXPECT_TRUE(s.accelerated());
+  EXPECT_FALSE(s.acceleration());
+  const Converged plain = converge(m, false, gauss::Method::cubic), fast = converge(m, true, gauss::Method::cubic);
+  EXPECT_NE(plain.vertices, fast.vertices);
 }
 
 TEST(Acceleration, ReachesThePlainFixedPoint) {
-  // Run far closer to the fixed point (reldV < 1e-5), both land on the same one.
+  // Run far closer to the fixed point (reldV < 1e-5), both land on the same one, with either method.
   const gauss::TriangleMesh m = gauss_test::icosphere(4);
-  const Converged plain = converge(m, false, gauss::Method::gauss, 1e-5), fast = converge(m, true, gauss::Method::gauss, 1e-5);
-  EXPECT_LT(fast.steps, plain.steps);
-  EXPECT_NEAR(fast.e_g, plain.e_g, 2e-4 * std::abs(plain.e_g));
-  EXPECT_NEAR(fast.e_arap, plain.e_arap, 2e-3 * plain.e_arap);
-  double farthest = 0;
-  for (size_t i = 0; i < m.V.size(); ++i) farthest = std::max(farthest, std::abs(fast.vertices[i] - plain.vertices[i]));
-  EXPECT_LT(farthest, 1e-3) << "the icosphere's radius is 1";
+  for (const gauss::Method method : {gauss::Method::gauss, gauss::Method::cubic}) {
+    SCOPED_TRACE(gauss::settings::method_names[static_cast<int>(method)]);
+    const Converged plain = converge(m, false, method, 1e-5), fast = converge(m, true, method, 1e-5);
+    EXPECT_LT(fast.steps, plain.steps);
+    EXPECT_NEAR(fast.e_g, plain.e_g, 2e-4 * std::abs(plain.e_g));
+    EXPECT_NEAR(fast.e_arap, plain.e_arap, 2e-3 * plain.e_arap);
+    double farthest = 0;
+    for (size_t i = 0; i < m.V.size(); ++i) farthest = std::max(farthest, std::abs(fast.vertices[i] - plain.vertices[i]));
+    EXPECT_LT(farthest, 1e-3) << "the icosphere's radius is 1";
+  }
 }
 
 TEST(Acceleration, OneAndTwoThreadsAreBitIdentical) {
   // Above the size where the loops go parallel, long enough for per-vertex and global restarts.
   const gauss::TriangleMesh m = gauss_test::icosphere(5);
-  const int saved = gauss::parallel::max_threads();
-  gauss::parallel::set_max_threads(1);
-  const Converged one = converge(m, true);
-  gauss::parallel::set_max_threads(2);
-  const Converged two = converge(m, true);
-  gauss::parallel::set_max_threads(saved);
-  EXPECT_EQ(one.steps, two.steps);
-  ASSERT_EQ(one.vertices.size(), two.vertices.size());
-  for (size_t i = 0; i < one.vertices.size(); ++i) ASSERT_EQ(one.vertices[i], two.vertices[i]) << i;
+  for (const gauss::Method method : {gauss::Method::gauss, gauss::Method::cubic}) {
+    SCOPED_TRACE(gauss::settings::method_names[static_cast<int>(method)]);
+    const int saved = gauss::parallel::max_threads();
+    gauss::parallel::set_max_threads(1);
+    const Converged one = converge(m, true, method);
+    gauss::parallel::set_max_threads(2);
+    const Converged two = converge(m, true, method);
+    gauss::parallel::set_max_threads(saved);
+    EXPECT_EQ(one.steps, two.steps);
+    ASSERT_EQ(one.vertices.size(), two.vertices.size());
+    for (size_t i = 0; i < one.vertices.size(); ++i) ASSERT_EQ(one.vertices[i], two.vertices[i]) << i;
+  }
 }
 
 TEST(Acceleration, OffIsThePlainIterationAndResetDropsTheMomentum) {
@@ -127,19 +140,24 @@ TEST(Acceleration, OffIsThePlainIterationAndResetDropsTheMomentum) {
     s.copy_vertices(out.data());
     return out;
   };
-  GaussSolver plain(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces());
-  plain.set_acceleration(false);
-  GaussSolver switched(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces());
-  for (int i = 0; i < 10; ++i) plain.step(), switched.step();
-  const std::vector<double> accelerated = vertices(switched);
-  EXPECT_NE(accelerated, vertices(plain));  // momentum took another path
-  // Accelerated again after a reset: the same run, bit for bit (the momentum is state too).
-  switched.reset();
-  for (int i = 0; i < 10; ++i) switched.step();
-  EXPECT_EQ(vertices(switched), accelerated);
-  // Switched off (with momentum pending) and reset: exactly the plain iteration.
-  switched.set_acceleration(false);
-  switched.reset();
-  for (int i = 0; i < 10; ++i) switched.step();
-  EXPECT_EQ(vertices(switched), vertices(plain));
+  for (const gauss::Method method : {gauss::Method::gauss, gauss::Method::cubic}) {
+    SCOPED_TRACE(gauss::settings::method_names[static_cast<int>(method)]);
+    GaussSolver plain(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces());
+    plain.set_method(method);
+    plain.set_acceleration(false);
+    GaussSolver switched(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces());
+    switched.set_method(method);
+    for (int i = 0; i < 10; ++i) plain.step(), switched.step();
+    const std::vector<double> accelerated = vertices(switched);
+    EXPECT_NE(accelerated, vertices(plain));  // momentum took another path
+    // Accelerated again after a reset: the same run, bit for bit (the momentum is state too).
+    switched.reset();
+    for (int i = 0; i < 10; ++i) switched.step();
+    EXPECT_EQ(vertices(switched), accelerated);
+    // Switched off (with momentum pending) and reset: exactly the plain iteration.
+    switched.set_acceleration(false);
+    switched.reset();
+    for (int i = 0; i < 10; ++i) switched.step();
+    EXPECT_EQ(vertices(switched), vertices(plain));
+  }
 }

@@ -16,7 +16,8 @@
 // weights every half-edge of a vertex's faces by the Laplacian's whole edge weight L_jk (not by the
 // face's half of it, as ARAP's spokes-and-rims energy would), its tolerances and caps are the
 // constants below, and lambda means the same in a frame normalized to a unit bounding box. It differs
-// in one choice: rho is not rebalanced on the iteration that meets the stopping rule (see fit()). And
+// in two choices: rho is not rebalanced on the iteration that meets the stopping rule, nor on the
+// first iteration at a state an accelerated iteration extrapolated (see fit()). And
 // where the reference has no answer: a vertex whose ADMM does not meet the tolerances within the
 // iteration cap keeps its last iterate (the reference then leaves that rotation uninitialized and
 // its state unsaved), a vertex without a normal (zero-area star) or with lambda_i = 0 takes the plain
@@ -28,7 +29,7 @@
 // Usage (geometry-central style: set-up in the constructor, no allocation in fit()):
 //   CubicLocalStep cubic(topo, rest, edge_weight);
 //   cubic.set_vertex_styles(strength, frame_of_vertex, frames);   // when styles change
-//   per step: cubic.covariances(topo, X); cubic.fit(topo, lambda, R, q);  // then ARAP's global step
+//   per step: cubic.covariances(topo, X); cubic.fit(topo, lambda, extrapolated, R, q);  // then ARAP's global step
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
@@ -45,7 +46,8 @@ inline constexpr double kRelTol = 1e-3;    // relative tolerance of both residua
 inline constexpr double kMu = 10.0;        // residual balancing: change rho when one residual is kMu times the other
 inline constexpr double kTau = 2.0;        // ... by this factor
 inline constexpr int kMaxIterations = 100; // per vertex and step
-// Safety bounds (not in the reference): rho settles near lambda_i, far inside these.
+// Safety bounds (not in the reference), far outside where rho settles (35K bunny: rho ~2e-3 where
+// lambda_i ~1e-5).
 inline constexpr double kMinRho = 1e-12, kMaxRho = 1e12;
 }  // namespace cubic_admm
 
@@ -72,10 +74,17 @@ class CubicLocalStep {
   // A local step in two parts, each parallel, the same for any thread count, without allocation.
   // covariances: the ARAP covariance of every face from the current vertices X (#V by 3, normalized
   // frame). fit: with those and the global lambda, rotation (#V) receives each referenced vertex's
-  // R_i; rotation_q (#V) is the rotation fit's warm start, read and updated.
+  // R_i; rotation_q (#V) is the rotation fit's warm start, read and updated. extrapolated: an
+  // accelerated iteration moved the carried state ahead (then rho is not rebalanced on the first
+  // ADMM iteration, whose residuals measure that move).
   void covariances(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& X);
-  void fit(const MeshTopology& topo, double lambda, std::vector<Eigen::Matrix3d>& rotation,
+  void fit(const MeshTopology& topo, double lambda, bool extrapolated, std::vector<Eigen::Matrix3d>& rotation,
            std::vector<Eigen::Quaterniond>& rotation_q);
+
+  // The ADMM state a step carries to the next, #V by 2: [2i] z_i, [2i+1] rho_i u_i (the unscaled
+  // dual, which a change of rho leaves alone). The solver's iteration extrapolates it together with
+  // the vertices (fixed_point_iteration.h); any finite values are a valid warm start.
+  std::vector<Eigen::Vector3d>& carried_state() { return carried_; }
 
   // Read-outs: ADMM iterations of the last fit() summed over the vertices that ran one; the cubic
   // term sum_i lambda_i ||Q_i^T R_i n_i||_1 of the given rotations (#V).
@@ -86,12 +95,6 @@ class CubicLocalStep {
   const std::vector<double>& vertex_areas() const { return area_; }               // #V barycentric
 
  private:
-  struct AdmmState {
-    Eigen::Vector3d z, u;  // z = Q^T R n at convergence; u the scaled dual
-    double rho;
-    int iterations;        // of the last fit (0: plain ARAP rotation)
-  };
-
   std::vector<Eigen::Vector3d> normal_;                       // #V n_i (zero where undefined)
   std::vector<double> area_;                                  // #V a_i
   std::vector<double> weight_;                                // #V a_i * m_i (zero where n_i is)
@@ -100,7 +103,9 @@ class CubicLocalStep {
   std::vector<char> frame_is_identity_;                       // per frame: Q == I (skips two products)
   std::vector<std::array<Eigen::Vector3d, 3>> slot_rest_;     // #F by 3: w_jk d^_jk of each slot
   std::vector<Eigen::Matrix3d> face_cov_;                     // #F per step: sum_k d_k (w d^_k)^T
-  std::vector<AdmmState> state_;                              // #V
+  std::vector<Eigen::Vector3d> carried_;                      // #V by 2: z (= Q^T R n at convergence), rho u
+  std::vector<double> rho_;                                   // #V
+  std::vector<int> iterations_;                               // #V, of the last fit (0: plain ARAP rotation)
 };
 
 }  // namespace gauss

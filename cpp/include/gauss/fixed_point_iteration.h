@@ -17,18 +17,21 @@
 // iteration creeps towards its fixed point along an almost fixed direction (consecutive steps of the
 // 35K bunny have cosine 0.9999, each ~1% shorter than the last), so it takes ~190 steps to reldV <
 // 1e-3. Momentum follows that direction: T is applied at
-//   y_k = x_k + beta (x_k - x_{k-1})        (beta = settings::momentum)
+//   y_k = x_k + beta (x_k - x_{k-1})        (beta: the method's settings::Momentum)
 // and x_{k+1} = T(y_k), a genuine step of Algorithm 1, is what the caller sees; reldV is measured from
 // y_k, so it still says how far one plain step moves. Adaptive restart (O'Donoghue & Candes 2015,
 // per vertex): a vertex whose step from y_k points against its momentum (a negative dot product) gets
-// none for the next settings::momentum_hold steps, so sliver regions that flap from step to step are
-// not kicked further; when the dot product summed over all vertices is negative, all restart.
-// Measured (cube, lambda 4, sigma 4, 1 ADMM round, reldV < 1e-3): bunny 35K 189 -> 54 steps, Spot
-// 181 -> 67, armadillo 369 -> 126, with the same final share of faces within 10 degrees of a cube
-// normal within 0.004. Anderson acceleration and over-relaxation were measured too and lost
-// (docs/python_api.md, "Accelerated"). Nothing here depends on what the step is, but momentum on the
-// vertices presumes that a step is a function of the vertices alone: the cubic method's is not (its
-// ADMM state carries over), and GaussSolver leaves it plain (gauss_solver.h, set_acceleration).
+// none for the next `hold` steps, so sliver regions that flap from step to step are not kicked
+// further; when the dot product summed over all vertices is negative, all restart.
+// A step that carries a state of its own from step to step (the cubic method's per-vertex ADMM
+// state) is a map on the vertices and that state together: both are extrapolated, each vertex's
+// state with the vertex (momentum on the vertices alone stopped the cubic method early, short of the
+// plain result: 35K bunny share 0.47 against 0.55).
+// Measured (reldV < 1e-3; Gauss: cube, lambda 4, sigma 4, 1 ADMM round): bunny 35K 189 -> 54 steps,
+// Spot 181 -> 67, armadillo 369 -> 126; cubic (lambda 0.2): bunny 35K 328 -> 40, Spot 124 -> 28,
+// armadillo 408 -> 30; the share of faces within 10 degrees of a cube normal stays within 0.02 of the
+// plain run's. Anderson acceleration and over-relaxation were measured too and lost
+// (docs/python_api.md, "Accelerated").
 //
 // Usage (X: the solver's current vertices, #V by 3):
 //   FixedPointIteration it(num_vertices);
@@ -61,10 +64,18 @@ class FixedPointIteration {
   // applies T to X in place. rest: #V by 3, the rest mesh; size: its extent.
   template <class Step>
   void advance(std::vector<Eigen::Vector3d>& X, const std::vector<Eigen::Vector3d>& rest, double size, Step&& step) {
-    move_to_momentum_point(X);  // X := y, point_ := y, current_ := x_k
+    advance(X, no_carried_state_, rest, size, step);
+  }
+  // The same for a step that also reads and writes a state of its own, carried from step to step
+  // (carried: #V by k, vertex v's rows [k v, k v + k)): it is extrapolated together with the vertices.
+  // Its size may change between steps (a change of method); then the momentum restarts.
+  template <class Step>
+  void advance(std::vector<Eigen::Vector3d>& X, std::vector<Eigen::Vector3d>& carried,
+               const std::vector<Eigen::Vector3d>& rest, double size, Step&& step) {
+    move_to_momentum_point(X, carried);  // X := y, point_ := y, current_ := x_k
     step();
     last_reldv_ = relative_change(point_, X, rest, size);
-    if (accelerate_) update_momentum(X);
+    if (accelerate_) update_momentum(X, carried);
   }
 
   // reldV of the last step; +infinity before the first step and after invalidate().
@@ -76,26 +87,35 @@ class FixedPointIteration {
     restart();
   }
 
-  void set_acceleration(bool on) {
+  void set_acceleration(bool on, settings::Momentum momentum) {
     accelerate_ = on;
+    momentum_ = momentum;
     restart();
   }
   bool acceleration() const { return accelerate_; }
+  // Whether the step now running (or the last one) was applied at an extrapolated point, where the
+  // step's residuals say as much about the extrapolation as about the step.
+  bool extrapolated() const { return extrapolated_; }
 
  private:
   void restart();
-  void move_to_momentum_point(std::vector<Eigen::Vector3d>& X);
-  void update_momentum(const std::vector<Eigen::Vector3d>& X);
+  void move_to_momentum_point(std::vector<Eigen::Vector3d>& X, std::vector<Eigen::Vector3d>& carried);
+  void update_momentum(const std::vector<Eigen::Vector3d>& X, const std::vector<Eigen::Vector3d>& carried);
 
   bool accelerate_ = settings::acceleration.default_value;
+  settings::Momentum momentum_ = settings::gauss_momentum;
   bool has_momentum_ = false;
+  bool extrapolated_ = false;
   double last_reldv_ = INFINITY;
   // #V each, allocated once.
   std::vector<Eigen::Vector3d> point_;     // y: where the last step applied T
   std::vector<Eigen::Vector3d> current_;   // x_k: the iterate before the last step
-  std::vector<Eigen::Vector3d> momentum_;  // x_k - x_{k-1}, then x_{k+1} - x_k
+  std::vector<Eigen::Vector3d> velocity_;  // x_k - x_{k-1}, then x_{k+1} - x_k
   std::vector<double> agreement_;          // (T(y) - y) . momentum per vertex
   std::vector<uint8_t> hold_;              // steps a vertex goes on without momentum
+  // The same for a carried state (#V by k; sized by its first accelerated step).
+  std::vector<Eigen::Vector3d> carried_current_, carried_velocity_;
+  std::vector<Eigen::Vector3d> no_carried_state_;  // empty
 };
 
 }  // namespace gauss

@@ -89,14 +89,12 @@ class GaussSolver {
   // are scaled back to their rest volume (closed) or area (open).
   void set_keep_volume(bool on);
   bool keep_volume() const { return keep_volume_; }
-  // Acceleration (settings::acceleration, fixed_point_iteration.h): momentum with adaptive restart.
-  // Off: the plain iteration of Algorithm 1. Either way a step ends on a step of Algorithm 1. It
-  // applies to the Gauss method only: the cubic method's local step carries its ADMM state from step
-  // to step, so momentum on the vertices alone made it stop early, short of the plain result (35K
-  // bunny: share 0.47 against 0.55); with Method::cubic the setting is kept and steps are plain.
+  // Acceleration (settings::acceleration, fixed_point_iteration.h): momentum with adaptive restart,
+  // with each method's settings::Momentum; the cubic method's carried ADMM state is extrapolated with
+  // the vertices. Off: the plain iteration of Algorithm 1. Either way a step ends on a step of the
+  // method's local-global iteration.
   void set_acceleration(bool on);
   bool acceleration() const { return acceleration_; }
-  bool accelerated() const { return iteration_.acceleration(); }  // the next step is
 
   // --- Method: the next step's local step; pins, styles and the factorization stay. ---
   // The first switch to Method::cubic prepares its per-vertex data (O(#V), no factorization). With it,
@@ -220,7 +218,7 @@ class GaussSolver {
   ThreadTuner tuner_;
   int step_count_ = 0;
   FixedPointIteration iteration_;  // reldV and the acceleration
-  bool acceleration_ = settings::acceleration.default_value;  // as set; iteration_ has it for Gauss only
+  bool acceleration_ = settings::acceleration.default_value;
   double tolerance_ = settings::tolerance.default_value;
 };
 

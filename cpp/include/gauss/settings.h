@@ -81,11 +81,17 @@ inline constexpr Option acceleration{"acceleration", true};
 
 inline constexpr const Option* options[] = {&keep_volume, &acceleration};
 
-// The acceleration's parameters (fixed_point_iteration.h), chosen by measurement on the bunny, Spot
-// and the armadillo: the momentum factor beta, and for how many steps a vertex whose step turned
-// against its momentum goes without (so flapping sliver regions are not kicked further).
-inline constexpr double momentum = 0.8;
-inline constexpr int momentum_hold = 4;
+// The acceleration's parameters (fixed_point_iteration.h) per method, chosen by measurement on the
+// bunny, Spot and the armadillo: the momentum factor beta, and for how many steps a vertex whose step
+// turned against its momentum goes without (so flapping sliver regions are not kicked further). The
+// cubic method's iteration also carries its ADMM state and creeps more slowly: a stronger momentum
+// and no per-vertex hold measured fastest with the same converged share (docs/python_api.md).
+struct Momentum {
+  double beta;
+  int hold;
+};
+inline constexpr Momentum gauss_momentum{0.8, 4};
+inline constexpr Momentum cubic_momentum{0.93, 0};
 
 // Sizes (exported as gauss_core.SIZE_LIMITS and written to core_facts.json). A style's preferred
 // normals: set-up is O(K log K) up to this many (normal_field.h); bigger sets are refused with a
