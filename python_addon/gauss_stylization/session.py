@@ -175,6 +175,8 @@ class Session:
         self.step_ms = []
         self.background_pins = background_pins and hasattr(self.gauss_core, "Progress")
         self.pins_setup = None         # a PinsSetup running or not yet looked at
+        # Counts the Pin Group changes sent to the solver: handles.Handles built before one are stale.
+        self.pin_changes = 0
         self._pin_group_before = None  # applied["pin_group"] before it
         self.target.prepare()  # first change to the object: everything above succeeded
 
@@ -240,6 +242,7 @@ class Session:
             solver.set_styles(new_styles)
         if pins is None:
             return
+        self.pin_changes += 1
         if self.background_pins:  # last: the solver is not to be touched until it is done
             self._pin_group_before = self.applied["pin_group"]
             self.pins_setup = PinsSetup(self, pins)
