@@ -164,6 +164,8 @@ def draw_pins():
     gpu.state.depth_test_set('NONE')
     gpu.state.blend_set('ALPHA')
     for run in runs.live_runs():
+        if not run.sessions:  # a bake (no sessions, no scratch), or a run still being set up
+            continue
         tool = tool_of(run)
         for session in run.sessions:
             if not usable(session):

@@ -321,3 +321,23 @@ def test_the_dots_are_drawn_from_the_drag_without_reading_the_solver(addon, monk
         session.solver = solver
         addon.runs.forget(run)
         session.cancel()
+
+
+def test_the_dots_of_a_live_run_are_drawn_beside_a_bake(addon, monkeypatch):
+    """A bake registers as a run without sessions (or a scratch dict): the pins of a Stylize run
+    going on at the same time are still drawn."""
+    class Bake:  # what runs.py sees of OBJECT_OT_gauss_bake_animation
+        sessions = ()
+
+    baked, bake = helpers.uv_sphere(8, 4), Bake()
+    obj, session = _pinned_sphere(addon)
+    run = _Run([session])
+    addon.runs.start([baked], bake)
+    addon.runs.start([obj], run)
+    try:
+        drawn = _draw_pins(addon, monkeypatch)
+        assert len(_dots(drawn, addon.handle_tool.PIN)) == len(session.solver.pinned)
+    finally:
+        addon.runs.forget(run)
+        addon.runs.forget(bake)
+        session.cancel()
