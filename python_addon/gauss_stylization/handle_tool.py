@@ -14,7 +14,6 @@ stay grabbable.
 """
 
 import gpu
-import numpy as np
 
 from . import gpu_compat, modal_events, runs
 from .handles import AXES, Drag, Handles
@@ -96,12 +95,12 @@ class HandleTool:
     def drop(self):
         self.drag = None
 
-    def grabbed(self, session):
-        """The vertex indices of ``session``'s pins being dragged (empty if none)."""
+    def grabbed_part(self, session):
+        """The index of ``session``'s handle being dragged, or None."""
         drag = self.drag
         if drag is None or drag.handles.session is not session:
-            return np.empty(0, np.int64)
-        return drag.handles.pins[drag.handles.parts[drag.part]]
+            return None
+        return drag.part
 
     def hint(self):
         """What the status bar says during a drag, or None."""
@@ -158,24 +157,31 @@ def run_ended(run, _context, _keep):
 
 
 def draw_pins():
-    """The draw handler: every live session's pins as dots, the grabbed handle's brighter."""
+    """The draw handler: every live session's pins as dots, the grabbed handle's brighter.
+
+    Drawn from the handles' own targets (moved by the drag), not the solver's: no copy of the
+    solver's arrays at every redraw, and the grabbed handle's dots are a slice of the others."""
     gpu.state.depth_test_set('NONE')
     gpu.state.blend_set('ALPHA')
     for run in runs.live_runs():
-        tool = run.scratch.get(NAME) or HandleTool()
+        if not run.sessions:  # a bake (no sessions, no scratch), or a run still being set up
+            continue
+        tool = tool_of(run)
         for session in run.sessions:
             if not usable(session):
                 continue
-            pins = np.asarray(session.solver.pinned)
-            if not len(pins):
+            handles = tool.handles_of(session)
+            points = handles.drawn
+            if not len(points):
                 continue
-            targets = np.asarray(session.solver.pin_positions, np.float32)
-            grabbed = np.isin(pins, tool.grabbed(session))
+            part = tool.grabbed_part(session)
+            grabbed = handles.drawn_rows[part] if part is not None else slice(len(points), len(points))
             with gpu.matrix.push_pop():
                 gpu.matrix.multiply_matrix(session.obj.matrix_world)
-                gpu_compat.draw_points(targets, EDGE, EDGE_PX)
-                gpu_compat.draw_points(targets[~grabbed], PIN, DOT_PX)
-                gpu_compat.draw_points(targets[grabbed], GRABBED, DOT_PX)
+                gpu_compat.draw_points(points, EDGE, EDGE_PX)
+                gpu_compat.draw_points(points[:grabbed.start], PIN, DOT_PX)
+                gpu_compat.draw_points(points[grabbed.stop:], PIN, DOT_PX)
+                gpu_compat.draw_points(points[grabbed], GRABBED, DOT_PX)
     gpu.state.blend_set('NONE')
 
 

@@ -68,22 +68,34 @@ def project(points, matrix_world, region, region_data):
 
 class Handles:
     """The handles of one session: its pins (as the solver orders them), their current
-    targets and the parts they form. Rebuilt when the solver's pins change."""
+    targets and the parts they form. Rebuilt when the solver's pins change.
+
+    pins:    #P vertex indices, the solver's order
+    targets: #P by 3 float64, the pins' targets (object space) as last sent to the solver
+    parts:   index arrays into ``pins``, one per handle (pin_parts)
+    drawn:   #P by 3 float32, the targets part after part, for the dots drawn every redraw;
+             part k's rows are ``drawn[drawn_rows[k]]`` (a slice: a view, no copy)
+    """
 
     def __init__(self, session):
         self.session = session
+        self.pin_changes = session.pin_changes  # before reading: a change after it makes these stale
         solver = session.solver
         self.pins = np.asarray(solver.pinned, np.int64)
         self.targets = np.asarray(solver.pin_positions, np.float64).copy()
         self.parts = pin_parts(self.pins, session.arrays.triangles)
         self.part_of = np.empty(len(self.pins), np.int64)  # pin (its row) -> its part
+        ends = np.cumsum([len(members) for members in self.parts], dtype=np.int64)
+        self.drawn_rows = [slice(int(end) - len(members), int(end)) for end, members in zip(ends, self.parts)]
+        self.drawn = np.empty((len(self.pins), 3), np.float32)
         for index, members in enumerate(self.parts):
             self.part_of[members] = index
+            self.drawn[self.drawn_rows[index]] = self.targets[members]
 
     def current(self):
-        """Still the solver's pins? (A changed Pin Group re-pins the solver mid-run.)"""
-        pinned = self.session.solver.pinned
-        return len(pinned) == len(self.pins) and np.array_equal(pinned, self.pins)
+        """Still the solver's pins? (A changed Pin Group re-pins the solver mid-run.) Asked at
+        every redraw and mouse move, so it compares a count instead of the solver's arrays."""
+        return self.pin_changes == self.session.pin_changes
 
     def part_at(self, x, y, region, region_data, ui_scale=1.0):
         """(part index, distance in pixels) of the handle with a pin nearest to region pixel
@@ -108,6 +120,7 @@ class Handles:
         except ValueError:
             return False
         self.targets = moved
+        self.drawn[self.drawn_rows[part]] = moved[self.parts[part]]
         return True
 
 

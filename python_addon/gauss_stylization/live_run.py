@@ -14,10 +14,11 @@ that, then it resumes by itself.
 """
 
 import time
+from collections import deque
 
 from .errors import SettingsError
 from .progress import progress_text
-from .session import Session
+from .session import TIMINGS_KEPT, Session
 from .settings_io import to_dict
 from .solver_setup import SolverSetup
 from .targets import TITLE
@@ -45,7 +46,7 @@ class LiveRun:
         self.paused = {}     # session -> why it cannot step now
         self.converged = set()  # sessions not stepped because they converged (read at the last tick)
         self.next = 0        # index of the session the next tick starts with
-        self.tick_ms = []
+        self.tick_ms = deque(maxlen=TIMINGS_KEPT)  # ms of the last TIMINGS_KEPT ticks that stepped
 
     @property
     def preparing(self):

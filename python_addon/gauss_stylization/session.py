@@ -15,6 +15,7 @@ start leaves the object as it was.
 """
 
 import time
+from collections import deque
 
 import numpy as np
 
@@ -28,6 +29,12 @@ from .validation import check_coordinates, check_object, check_pins, check_setti
 # A result outside the rest mesh's coordinate range widened by this many mesh sizes is treated
 # as a blow-up: the solver keeps outputs within a few sizes, so this only catches a defect.
 MAX_EXTENT = 100.0
+
+# Step (and live tick) timings are kept for the status bar (the last one) and the medians tests and
+# benchmarks report, not for the whole run: a live run ticks up to 100 times a second, so an hour
+# would keep ~360,000. The last 1000 are 10 s or more of a live run and more than any benchmark
+# takes (measure_tick.py: 60 ticks by default), so its medians still cover every step it measured.
+TIMINGS_KEPT = 1000
 
 
 def ensure_style_slot(settings):
@@ -172,9 +179,11 @@ class Session:
         margin = MAX_EXTENT * max(upper - lower, 1e-30)
         self.bounds = (lower - margin, upper + margin)
         self.steps = 0
-        self.step_ms = []
+        self.step_ms = deque(maxlen=TIMINGS_KEPT)  # ms per step, of the last TIMINGS_KEPT step() / step_until()
         self.background_pins = background_pins and hasattr(self.gauss_core, "Progress")
         self.pins_setup = None         # a PinsSetup running or not yet looked at
+        # Counts the Pin Group changes sent to the solver: handles.Handles built before one are stale.
+        self.pin_changes = 0
         self._pin_group_before = None  # applied["pin_group"] before it
         self.target.prepare()  # first change to the object: everything above succeeded
 
@@ -240,6 +249,7 @@ class Session:
             solver.set_styles(new_styles)
         if pins is None:
             return
+        self.pin_changes += 1
         if self.background_pins:  # last: the solver is not to be touched until it is done
             self._pin_group_before = self.applied["pin_group"]
             self.pins_setup = PinsSetup(self, pins)

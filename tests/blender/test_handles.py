@@ -2,6 +2,7 @@
 run without re-factoring, refusing what the solver refuses, and plain ARAP dragging.
 (Grabbing and dragging with the mouse is tried in a real window: windowed_interactive.py.)"""
 
+import contextlib
 import json
 import re
 from types import SimpleNamespace
@@ -260,4 +261,83 @@ def test_a_drag_ends_with_its_run_or_its_object(addon):
         assert addon.modal_events.dispatch(run, bpy.context, _key('ESC')) == {'CANCELLED'}
         assert tool.drag is None and run.ended == [False]
     finally:
+        session.cancel()
+
+
+class _SolverWithoutPinReads:
+    """A session's solver whose pin arrays must not be read: each read copies them."""
+
+    def __init__(self, solver):
+        self._solver = solver
+
+    def __getattr__(self, name):
+        if name in ("pinned", "pin_positions"):
+            raise AssertionError("the solver's %s was read" % name)
+        return getattr(self._solver, name)
+
+
+def _draw_pins(addon, monkeypatch):
+    """The pin dots draw_pins() draws, as [(colour, N by 3 points)] (the gpu calls left out: no GPU
+    in the background)."""
+    drawn = []
+    matrix = SimpleNamespace(push_pop=contextlib.nullcontext, multiply_matrix=lambda _matrix: None)
+    state = SimpleNamespace(depth_test_set=lambda _mode: None, blend_set=lambda _mode: None)
+    monkeypatch.setattr(addon.handle_tool, "gpu", SimpleNamespace(matrix=matrix, state=state))
+    monkeypatch.setattr(addon.handle_tool.gpu_compat, "draw_points",
+                        lambda points, colour, _size: drawn.append((colour, np.array(points))) if len(points) else None)
+    addon.handle_tool.draw_pins()
+    return drawn
+
+
+def _dots(drawn, colour):
+    return np.concatenate([points for c, points in drawn if c == colour] or [np.empty((0, 3))])
+
+
+def test_the_dots_are_drawn_from_the_drag_without_reading_the_solver(addon, monkeypatch):
+    """At every redraw of a drag the dots come from the handles' own targets: not a copy of the
+    solver's arrays. They show where the drag moved the pins, the grabbed handle's brighter."""
+    handle_tool = addon.handle_tool
+    obj, session = _pinned_sphere(addon)
+    run = _Run([session])
+    addon.runs.start([obj], run)
+    solver = session.solver
+    try:
+        tool, handles = _grab(addon, run, session, 0)
+        moved = handles.targets[handles.parts[0]] + [0.3, 0.0, 0.1]
+        assert handles.move(0, moved)
+        expected = solver.pin_positions.astype(np.float32)  # where the solver has the pins now
+        session.solver = _SolverWithoutPinReads(solver)
+        for _redraw in range(2):
+            drawn = _draw_pins(addon, monkeypatch)
+            assert tool.handles_of(session) is handles  # nothing rebuilt from the solver
+            outlines = _dots(drawn, handle_tool.EDGE)
+            assert sorted(map(tuple, outlines)) == sorted(map(tuple, expected))
+            np.testing.assert_array_equal(_dots(drawn, handle_tool.GRABBED), moved.astype(np.float32))
+            np.testing.assert_array_equal(_dots(drawn, handle_tool.PIN), expected[handles.parts[1]])
+        tool.drop()
+        drawn = _draw_pins(addon, monkeypatch)
+        assert len(_dots(drawn, handle_tool.GRABBED)) == 0 and len(_dots(drawn, handle_tool.PIN)) == len(expected)
+    finally:
+        session.solver = solver
+        addon.runs.forget(run)
+        session.cancel()
+
+
+def test_the_dots_of_a_live_run_are_drawn_beside_a_bake(addon, monkeypatch):
+    """A bake registers as a run without sessions (or a scratch dict): the pins of a Stylize run
+    going on at the same time are still drawn."""
+    class Bake:  # what runs.py sees of OBJECT_OT_gauss_bake_animation
+        sessions = ()
+
+    baked, bake = helpers.uv_sphere(8, 4), Bake()
+    obj, session = _pinned_sphere(addon)
+    run = _Run([session])
+    addon.runs.start([baked], bake)
+    addon.runs.start([obj], run)
+    try:
+        drawn = _draw_pins(addon, monkeypatch)
+        assert len(_dots(drawn, addon.handle_tool.PIN)) == len(session.solver.pinned)
+    finally:
+        addon.runs.forget(run)
+        addon.runs.forget(bake)
         session.cancel()

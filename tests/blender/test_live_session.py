@@ -278,3 +278,26 @@ def test_mesh_freed_mid_run_cancel_touches_nothing(addon):
     bpy.data.meshes.remove(obj.data)  # removes the object too
     assert not run.object_alive()
     run.cancel()  # no ReferenceError, no access to freed data
+
+
+def test_a_long_live_run_keeps_only_the_last_step_and_tick_timings(addon):
+    """An artist may leave a live run going for an hour (up to 100 ticks a second): its step and
+    tick timings keep the last TIMINGS_KEPT, the newest last (what the status bar shows)."""
+    obj = helpers.uv_sphere(8, 4)
+    addon.session.ensure_style_slot(obj.gauss_stylization)
+    schema = addon.schema
+    obj.gauss_stylization.tolerance = schema.field(schema.OBJECT, "tolerance").hard[0]  # status: ms, not "Converged"
+    live = helpers.live_run([obj])
+    session, kept = live.sessions[0], addon.session.TIMINGS_KEPT
+    try:
+        for tick in range(kept + 200):
+            obj.gauss_stylization.lam = 4.0 + 0.01 * (tick % 2)  # a changed setting: never converged
+            live.tick(budget=0.0)  # one step per tick
+        assert session.steps == kept + 200
+        assert len(session.step_ms) == kept and len(live.tick_ms) == kept
+        session.step_ms.append(12.3)
+        live.tick_ms.append(34.5)
+        assert "12.3 ms/step, 34.5 ms/tick" in live.status_text()
+        assert len(session.step_ms) == kept and len(live.tick_ms) == kept
+    finally:
+        live.cancel()

@@ -42,22 +42,37 @@ def test_accelerated_reldv_is_how_far_one_plain_step_moves():
     assert plain.last_reldv < 2e-3, plain.last_reldv
 
 
-def test_accelerated_and_plain_runs_reach_the_same_result_in_fewer_steps():
+def _converge(V, F, method, acceleration):
+    """(steps, cube-aligned share) of the cube style (Gauss: lambda 4, sigma 4; the cubic method at its
+    default lambda) run until reldV < 1e-3."""
+    s = gauss_core.Solver(V, F, lam=4.0, method=method, acceleration=acceleration)
+    s.set_styles([gauss_core.Style.preset("cube", sigma=4.0)])
+    steps = s.step_until(1e-3, 2000)
+    assert s.converged and s.acceleration == acceleration
+    return steps, aligned_share(s.vertices, F, gauss_core.Style.preset("cube").normals)
+
+
+def _expect_same_result_in_fewer_steps(V, F, method, max_step_ratio):
+    plain, fast = _converge(V, F, method, False), _converge(V, F, method, True)
+    assert fast[0] < max_step_ratio * plain[0], (plain, fast)
+    assert abs(fast[1] - plain[1]) < 0.02, (plain, fast)
+
+
+# Measured (as tests/cpp/test_acceleration.cpp): icosphere(4) Gauss 31 -> 19 steps (shares 0.8962 and 0.8971),
+# cubic 62 -> 19 (0.6428 and 0.6427; the cubic method's ADMM state is extrapolated with the vertices).
+@pytest.mark.parametrize("method, max_step_ratio", [("gauss", 0.75), ("cubic", 0.5)])
+def test_accelerated_and_plain_runs_reach_the_same_result_in_fewer_steps(method, max_step_ratio):
+    V, F = icosphere(4)
+    _expect_same_result_in_fewer_steps(V, F, method, max_step_ratio)
+
+
+def test_accelerated_and_plain_runs_reach_the_same_result_in_fewer_steps_on_spot():
     path = SHARED_MESHES / "small" / "spot_triangulated_2930.obj"
     if not path.exists():
         pytest.skip("../shared/meshes not present")
     V, F = read_obj(path)
-    cube = gauss_core.Style.preset("cube")
-    results = {}
-    for acceleration in (False, True):
-        s = gauss_core.Solver(V, F, lam=4.0, acceleration=acceleration)
-        s.set_styles([gauss_core.Style.preset("cube", sigma=4.0)])
-        steps = s.step_until(1e-3, 2000)
-        assert s.converged
-        results[acceleration] = steps, aligned_share(s.vertices, F, cube.normals)
     # Measured: 181 plain steps, 67 accelerated; area-weighted shares 0.7736 and 0.7745.
-    assert results[True][0] < 0.5 * results[False][0], results
-    assert abs(results[True][1] - results[False][1]) < 0.02, results
+    _expect_same_result_in_fewer_steps(V, F, "gauss", 0.5)
 
 
 def test_step_until_stops_at_the_tolerance_and_respects_the_cap():
