@@ -61,7 +61,7 @@ void adjacency(const Eigen::SparseMatrix<double>& A, std::vector<int>& start, st
 
 }  // namespace
 
-void CholeskySolver::factor(const Eigen::SparseMatrix<double>& A, Progress* watcher) {
+void CholeskySolver::factor(Eigen::SparseMatrix<double> A, Progress* watcher) {
   Progress unwatched;
   Progress& progress = watcher ? *watcher : unwatched;
   const bool own_run = !progress.running();
@@ -77,6 +77,10 @@ void CholeskySolver::factor(const Eigen::SparseMatrix<double>& A, Progress* watc
     }
     progress.enter(SetupPhase::symbolic);
     SupernodalStructure S = analyse_supernodal(A, order, progress);
+    Eigen::SparseMatrix<double>().swap(A);  // S.A has the values now
+    // The ordering's scratch (much of it in the pool threads' arenas) and the analysis's, freed but
+    // still resident, would lie under the factor: the set-up's peak.
+    release_free_memory();
     check_memory(S.numeric_bytes(), "the factorization of " + std::to_string(n) + " unknowns");
     progress.enter(SetupPhase::factorizing);
     std::unique_ptr<double[]> values = factor_supernodal(S, progress);
@@ -106,6 +110,7 @@ void CholeskySolver::factor(const Eigen::SparseMatrix<double>& A, Progress* watc
   } catch (const std::bad_alloc&) {
     throw OutOfMemory("not enough memory to factor the Laplacian of " + std::to_string(n) + " unknowns");
   }
+  release_free_memory();  // the structure's scratch and the copy of A, before the caller's step buffers
   if (own_run) progress.finish();
 }
 

@@ -52,7 +52,6 @@ CubicLocalStep::CubicLocalStep(const MeshTopology& topo, const std::vector<Vecto
     // Faces that cancel out (a folded sheet, a zero-area star) leave no direction to stylize.
     if (std::isfinite(len) && len > 1e-12 * twice_area && len > 1e-300) normal_[v] = sum / len;
   }
-  face_cov_.assign(nF, Matrix3d::Zero());
   weight_.assign(nV, 0.0);
   frame_.assign(nV, 0);
   frames_.assign(1, Matrix3d::Identity());
@@ -92,27 +91,28 @@ void CubicLocalStep::reset() {
   }
 }
 
-void CubicLocalStep::covariances(const MeshTopology& topo, const std::vector<Vector3d>& X) {
+void CubicLocalStep::covariances(const MeshTopology& topo, const std::vector<Vector3d>& X,
+                                 std::vector<Matrix3d>& face_cov) const {
   const int nF = static_cast<int>(topo.faces.size());
   parallel::for_each(nF, parallel::kMinParallelItems, [&](int f) {
     const auto& t = topo.faces[f];
     Matrix3d c = (X[t[1]] - X[t[0]]) * slot_rest_[f][0].transpose();
     c.noalias() += (X[t[2]] - X[t[1]]) * slot_rest_[f][1].transpose();
     c.noalias() += (X[t[0]] - X[t[2]]) * slot_rest_[f][2].transpose();
-    face_cov_[f] = c;
+    face_cov[f] = c;
   });
 }
 
-void CubicLocalStep::fit(const MeshTopology& topo, double lambda, bool extrapolated,
-                         std::vector<Matrix3d>& rotation, std::vector<Eigen::Quaterniond>& rotation_q) {
+void CubicLocalStep::fit(const MeshTopology& topo, const std::vector<Matrix3d>& face_cov, double lambda,
+                         bool extrapolated, std::vector<Matrix3d>& rotation, std::vector<Eigen::Quaterniond>& rotation_q) {
   using namespace cubic_admm;
   const double sqrt6_abs = std::sqrt(6.0) * kAbsTol, sqrt3_abs = std::sqrt(3.0) * kAbsTol;
   // A vertex's ADMM costs several times a typical loop item, so fewer vertices already pay for a fork.
   parallel::for_each(topo.num_vertices, parallel::kMinParallelItems / 4, [&](int v) {
     const int begin = topo.vertex_corner_start[v], end = topo.vertex_corner_start[v + 1];
     if (begin == end) return;
-    Matrix3d M = face_cov_[topo.vertex_corners[begin] / 3];
-    for (int i = begin + 1; i < end; ++i) M += face_cov_[topo.vertex_corners[i] / 3];
+    Matrix3d M = face_cov[topo.vertex_corners[begin] / 3];
+    for (int i = begin + 1; i < end; ++i) M += face_cov[topo.vertex_corners[i] / 3];
     const double w = lambda * weight_[v];
     if (!(w > 0)) {  // no cubic term: ARAP's rotation, exactly
       rotation[v] = closest_rotation_warm(M, rotation_q[v]);

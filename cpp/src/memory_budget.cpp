@@ -2,6 +2,9 @@
 
 #include <sys/resource.h>
 #include <unistd.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <cstdio>
@@ -116,6 +119,12 @@ int64_t available_memory_bytes() {
     if (end != budget && mb >= 0 && mb < 1e12) return static_cast<int64_t>(mb * 1024 * 1024);
   }
   return std::min({meminfo_available(), address_space_left(), cgroups_left()});
+}
+
+void release_free_memory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
 }
 
 std::string format_bytes(int64_t bytes) {

@@ -25,13 +25,15 @@ namespace gauss {
 
 class CholeskySolver {
  public:
-  // A: symmetric positive definite n by n (only the lower triangle is read).
+  // A: symmetric positive definite n by n (only the lower triangle is read). Taken by value and freed
+  // once the symbolic analysis holds its own copy, before the numeric factorization allocates the
+  // factor: a caller that has no further use for A moves it in, and the set-up's peak has one copy.
   // progress: receives SetupPhase::ordering .. factorizing (started and finished here unless the
   //   caller already started it); cancel() makes factor() throw Cancelled.
   // Throws std::runtime_error if A is not numerically positive definite, OutOfMemory (memory_budget.h)
   // if the factor would not fit in the available memory, Cancelled. On any exception the solver keeps
   // its previous factor, unchanged.
-  void factor(const Eigen::SparseMatrix<double>& A, Progress* progress = nullptr);
+  void factor(Eigen::SparseMatrix<double> A, Progress* progress = nullptr);
   // Solves A X = B in place; B: n by 3, row-major (x, y, z of one unknown adjacent), in elimination
   // order: row position(i) holds unknown i (callers assemble B in that order, which saves two
   // permuting passes). No allocation happens here; one solve at a time per solver.

@@ -29,7 +29,9 @@
 // Usage (geometry-central style: set-up in the constructor, no allocation in fit()):
 //   CubicLocalStep cubic(topo, rest, edge_weight);
 //   cubic.set_vertex_styles(strength, frame_of_vertex, frames);   // when styles change
-//   per step: cubic.covariances(topo, X); cubic.fit(topo, lambda, extrapolated, R, q);  // then ARAP's global step
+//   per step: cubic.covariances(topo, X, cov); cubic.fit(topo, cov, lambda, extrapolated, R, q);  // then ARAP's global step
+// (cov: #F Matrix3d the caller owns, scratch between the two calls; the Gauss solver lends the buffer
+// its own local step uses, so the cubic method needs no second #F array.)
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
@@ -72,14 +74,16 @@ class CubicLocalStep {
   void reset();
 
   // A local step in two parts, each parallel, the same for any thread count, without allocation.
-  // covariances: the ARAP covariance of every face from the current vertices X (#V by 3, normalized
-  // frame). fit: with those and the global lambda, rotation (#V) receives each referenced vertex's
-  // R_i; rotation_q (#V) is the rotation fit's warm start, read and updated. extrapolated: an
-  // accelerated iteration moved the carried state ahead (then rho is not rebalanced on the first
-  // ADMM iteration, whose residuals measure that move).
-  void covariances(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& X);
-  void fit(const MeshTopology& topo, double lambda, bool extrapolated, std::vector<Eigen::Matrix3d>& rotation,
-           std::vector<Eigen::Quaterniond>& rotation_q);
+  // covariances: the ARAP covariance sum_k d_k (w d^_k)^T of every face from the current vertices X
+  // (#V by 3, normalized frame), written to face_cov (#F, sized by the caller). fit: with those and
+  // the global lambda, rotation (#V) receives each referenced vertex's R_i; rotation_q (#V) is the
+  // rotation fit's warm start, read and updated. extrapolated: an accelerated iteration moved the
+  // carried state ahead (then rho is not rebalanced on the first ADMM iteration, whose residuals
+  // measure that move).
+  void covariances(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& X,
+                   std::vector<Eigen::Matrix3d>& face_cov) const;
+  void fit(const MeshTopology& topo, const std::vector<Eigen::Matrix3d>& face_cov, double lambda, bool extrapolated,
+           std::vector<Eigen::Matrix3d>& rotation, std::vector<Eigen::Quaterniond>& rotation_q);
 
   // The ADMM state a step carries to the next, #V by 2: [2i] z_i, [2i+1] rho_i u_i (the unscaled
   // dual, which a change of rho leaves alone). The solver's iteration extrapolates it together with
@@ -102,7 +106,6 @@ class CubicLocalStep {
   std::vector<Eigen::Matrix3d> frames_;                       // Q
   std::vector<char> frame_is_identity_;                       // per frame: Q == I (skips two products)
   std::vector<std::array<Eigen::Vector3d, 3>> slot_rest_;     // #F by 3: w_jk d^_jk of each slot
-  std::vector<Eigen::Matrix3d> face_cov_;                     // #F per step: sum_k d_k (w d^_k)^T
   std::vector<Eigen::Vector3d> carried_;                      // #V by 2: z (= Q^T R n at convergence), rho u
   std::vector<double> rho_;                                   // #V
   std::vector<int> iterations_;                               // #V, of the last fit (0: plain ARAP rotation)

@@ -156,7 +156,7 @@ class GaussSolver {
   // One local-global step on X_ (Algorithm 1: local step, then the global solve), timing its phases.
   void local_global_step();
   void face_pass();
-  void fit_rotations();  // rotation_ from face_cov_
+  void fit_rotations();  // rotation_ from the covariances in face_scratch_
   void admm_round(bool first_round);
   // Eq. 27's right-hand side from rotation_; with_edges adds the Gauss method's lambda w e* terms.
   void assemble_rhs(bool with_edges);
@@ -210,10 +210,13 @@ class GaussSolver {
   std::vector<std::array<double, 3>> dual_;                  // #F by 3 (u_fij, w.r.t. lo->hi edges)
   std::vector<double> face_mu_;                              // #F: mu, 0 if unstyled or degenerate
   std::vector<Eigen::Vector3d> edge_star_;                   // #E (lo -> hi)
-  std::vector<Eigen::Matrix3d> face_cov_;                    // #F: sum_k w e_k ehat_k^T
   std::vector<Eigen::Matrix3d> rotation_;                    // #V
   std::vector<Eigen::Quaterniond> rotation_q_;               // #V: warm start of the rotation fit
-  std::vector<std::array<Eigen::Vector3d, 3>> corner_rhs_;   // #F by 3
+  // #F, for two phases of a step that never overlap: first each face's ARAP covariance
+  // sum_k w e_k ehat_k^T (face_pass() or the cubic method's, read by the rotation fit), then the
+  // right-hand sides of its corners, corner k in column k (assemble_rhs()). One array for both saves
+  // 72 bytes a face (72 MB on the 1M-face mesh of scripts/measure_scale.sh).
+  std::vector<Eigen::Matrix3d> face_scratch_;
   StepTimings timings_;
   ThreadTuner tuner_;
   int step_count_ = 0;
