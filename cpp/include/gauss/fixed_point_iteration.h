@@ -28,8 +28,8 @@
 // state with the vertex (momentum on the vertices alone stopped the cubic method early, short of the
 // plain result: 35K bunny share 0.47 against 0.55).
 // Measured (reldV < 1e-3; Gauss: cube, lambda 4, sigma 4, 1 ADMM round): bunny 35K 189 -> 54 steps,
-// Spot 181 -> 67, armadillo 369 -> 126; cubic (lambda 0.2): bunny 35K 328 -> 40, Spot 124 -> 28,
-// armadillo 408 -> 30; the share of faces within 10 degrees of a cube normal stays within 0.02 of the
+// Spot 181 -> 67, armadillo 369 -> 126; cubic (lambda 0.2): bunny 35K 328 -> 39, Spot 124 -> 28,
+// armadillo 408 -> 33; the share of faces within 10 degrees of a cube normal stays within 0.02 of the
 // plain run's. Anderson acceleration and over-relaxation were measured too and lost
 // (docs/python_api.md, "Accelerated").
 //
