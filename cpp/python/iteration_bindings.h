@@ -53,10 +53,11 @@ void bind_iteration(pybind11::class_<SolverWrapper>& cls) {
       [](SolverWrapper& s, bool on) {
         std::lock_guard<std::mutex> lock(s.mutex());
         s.core().set_acceleration(on);
-      }, "Accelerate the iteration (momentum with adaptive restart): about a third of the steps to\n"
-         "converge, to the same result. False: the plain iteration of Algorithm 1. Either way every step\n"
-         "ends on a step of Algorithm 1. The Gauss method only: with method 'cubic' steps are plain and\n"
-         "the setting is kept for when the method is 'gauss' again. Default: DEFAULTS['acceleration'].");
+      }, "Accelerate the iteration (momentum with adaptive restart), for both methods: a third of the\n"
+         "steps or fewer to converge (Gauss, 35K bunny: 0.29; cubic: 0.12), to the same result. The cubic\n"
+         "method's per-vertex ADMM state is extrapolated with the vertices. False: the plain iteration.\n"
+         "Either way every step ends on a step of the method's local-global iteration.\n"
+         "Default: DEFAULTS['acceleration'].");
   cls.def("set_vertices", [](SolverWrapper& s, const py::object& vertices) {
         const int n = s.core().num_vertices();
         py::array arr = as_array(vertices, "vertices");

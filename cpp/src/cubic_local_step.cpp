@@ -56,10 +56,16 @@ CubicLocalStep::CubicLocalStep(const MeshTopology& topo, const std::vector<Vecto
   frame_.assign(nV, 0);
   frames_.assign(1, Matrix3d::Identity());
   frame_is_identity_.assign(1, 1);
-  carried_.resize(2 * static_cast<size_t>(nV));
+  carried_.resize(kCarriedPerVertex * static_cast<size_t>(nV));
   rho_.resize(nV);
   iterations_.resize(nV);
   reset();
+}
+
+int64_t CubicLocalStep::bytes_needed(int num_vertices, int num_faces) {
+  // Per face: slot_rest_ 72, the constructor's face normals 24. Per vertex: normal_ 24, area_ 8,
+  // weight_ 8, frame_ 4, carried_ 48, rho_ 8, iterations_ 4.
+  return 96 * int64_t{num_faces} + 104 * int64_t{num_vertices};
 }
 
 void CubicLocalStep::set_vertex_styles(const std::vector<double>& strength, const std::vector<int>& frame,

@@ -1,6 +1,7 @@
 #include "gauss/fixed_point_iteration.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "gauss/parallel.h"
 
@@ -30,6 +31,14 @@ FixedPointIteration::FixedPointIteration(int num_vertices)
       agreement_(num_vertices, 0.0),
       hold_(num_vertices, 0) {}
 
+void FixedPointIteration::prepare_carried(size_t size) {
+  if (size > carried_velocity_.size()) {
+    carried_current_.resize(size);
+    carried_velocity_.resize(size, Vector3d::Zero());
+  }
+  restart();
+}
+
 void FixedPointIteration::restart() {
   has_momentum_ = false;
   std::fill(hold_.begin(), hold_.end(), 0);
@@ -37,10 +46,10 @@ void FixedPointIteration::restart() {
 
 void FixedPointIteration::move_to_momentum_point(std::vector<Vector3d>& X, std::vector<Vector3d>& carried) {
   const int n = static_cast<int>(X.size());
-  if (accelerate_ && carried.size() != carried_velocity_.size()) {
-    // A change of method: once, not per step.
-    carried_current_.resize(carried.size());
-    carried_velocity_.resize(carried.size());
+  if (carried.size() > carried_velocity_.size())
+    throw std::logic_error("FixedPointIteration: the carried state is larger than prepare_carried() made room for");
+  if (carried.size() != carried_size_) {  // another method's state: its momentum means nothing here
+    carried_size_ = carried.size();
     restart();
   }
   extrapolated_ = accelerate_ && has_momentum_;
@@ -48,7 +57,7 @@ void FixedPointIteration::move_to_momentum_point(std::vector<Vector3d>& X, std::
     point_ = X;  // same sizes: no allocation
     if (accelerate_) {
       current_ = X;
-      carried_current_ = carried;
+      std::copy(carried.begin(), carried.end(), carried_current_.begin());
     }
     return;
   }

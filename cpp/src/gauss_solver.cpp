@@ -295,6 +295,9 @@ void GaussSolver::local_global_step() {
     timings_.faces = ms_since(t0);
     timings_.rotations = 0;
     t0 = Clock::now();
+    // One flag for all vertices: the cubic momentum holds no vertex back, so every vertex's state
+    // was extrapolated (or none was).
+    static_assert(settings::cubic_momentum.hold == 0, "fit() would need to know which vertices were held");
     cubic_.fit(topo_, face_scratch_, cubic_lambda_, iteration_.extrapolated(), rotation_, rotation_q_);
   }
   timings_.admm = ms_since(t0);

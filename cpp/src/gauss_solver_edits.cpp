@@ -4,10 +4,12 @@
 #include <cstdint>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "gauss/gauss_solver.h"
+#include "gauss/memory_budget.h"
 #include "gauss/settings.h"
 
 namespace gauss {
@@ -78,7 +80,12 @@ void GaussSolver::set_keep_volume(bool on) {
 void GaussSolver::set_method(Method method) {
   if (method != Method::gauss && method != Method::cubic) throw std::invalid_argument("unknown stylization method");
   if (method == Method::cubic && !cubic_ready_) {
+    const size_t carried = CubicLocalStep::kCarriedPerVertex * static_cast<size_t>(topo_.num_vertices);
+    check_memory(CubicLocalStep::bytes_needed(topo_.num_vertices, static_cast<int>(topo_.faces.size())) +
+                     FixedPointIteration::carried_bytes(carried),
+                 "the cubic method's data for " + std::to_string(topo_.num_vertices) + " vertices");
     cubic_ = CubicLocalStep(topo_, rest_, edge_weight_);
+    iteration_.prepare_carried(carried);
     cubic_ready_ = true;
     update_cubic_styles();
   }

@@ -88,15 +88,32 @@ TEST(Acceleration, ReachesTheCubicMethodsPlainResultInFewerSteps) {
   expect_same_result_in_fewer_steps(gauss::read_mesh(bunny), 1.0 / 3, gauss::Method::cubic);
 }
 
+TEST(Acceleration, TheCubicMethodKeepsRhoAtAnExtrapolatedState) {
+  // Where rho matters: rebalancing it on the first ADMM iteration at an extrapolated state (whose
+  // primal residual measures the extrapolation) raised rho fourfold on the 35K bunny and stopped the
+  // accelerated run at share 0.52 against the plain run's 0.55 (measured); the generated meshes
+  // above do not show it.
+  const std::string bunny = gauss_test::shared_mesh("bunny/bun_zipper_35947.obj");
+  if (!std::ifstream(bunny).good()) GTEST_SKIP() << "../shared/meshes not present";
+  expect_same_result_in_fewer_steps(gauss::read_mesh(bunny), 1.0 / 3, gauss::Method::cubic);
+}
+
 TEST(Acceleration, FollowsTheMethod) {
-  // The setting survives a change of method, and each method's steps take it.
+  // The setting survives a change of method, and each method's steps take it, with its momentum.
   const gauss::TriangleMesh m = gauss_test::icosphere(3);
   GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces());
+  EXPECT_EQ(s.momentum().beta, gauss::settings::gauss_momentum.beta);
   s.set_method(gauss::Method::cubic);
   EXPECT_TRUE(s.acceleration());
+  EXPECT_EQ(s.momentum().beta, gauss::settings::cubic_momentum.beta);
+  EXPECT_EQ(s.momentum().hold, gauss::settings::cubic_momentum.hold);
+  s.set_acceleration(true);  // re-set: still the cubic method's
+  EXPECT_EQ(s.momentum().beta, gauss::settings::cubic_momentum.beta);
   s.set_acceleration(false);
   s.set_method(gauss::Method::gauss);
   EXPECT_FALSE(s.acceleration());
+  EXPECT_EQ(s.momentum().beta, gauss::settings::gauss_momentum.beta);
+  EXPECT_EQ(s.momentum().hold, gauss::settings::gauss_momentum.hold);
   const Converged plain = converge(m, false, gauss::Method::cubic), fast = converge(m, true, gauss::Method::cubic);
   EXPECT_NE(plain.vertices, fast.vertices);
 }

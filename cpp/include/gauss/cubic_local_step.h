@@ -35,6 +35,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "gauss/mesh_topology.h"
@@ -63,10 +64,16 @@ class CubicLocalStep {
   CubicLocalStep(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& rest,
                  const std::vector<double>& edge_weight);
 
+  // Bytes the constructor allocates for a mesh of this size (its members and its one #F temporary,
+  // rounded up): for a memory check before it runs.
+  static int64_t bytes_needed(int num_vertices, int num_faces);
+  // Rows of carried_state() per vertex.
+  static constexpr int kCarriedPerVertex = 2;
+
   // strength  #V style strength m_i of each vertex (>= 0; lambda_i = lambda * a_i * m_i)
   // frame     #V index into frames of each vertex's cube orientation Q_i
   // frames    rotation matrices (each orthonormal, det +1)
-  // Keeps the ADMM state; z is re-expressed in a vertex's new frame.
+  // Keeps the ADMM state; z and the dual are re-expressed in a vertex's new frame.
   void set_vertex_styles(const std::vector<double>& strength, const std::vector<int>& frame,
                          const std::vector<Eigen::Matrix3d>& frames);
 

@@ -36,9 +36,12 @@
 // Usage (X: the solver's current vertices, #V by 3):
 //   FixedPointIteration it(num_vertices);
 //   it.advance(X, rest, size, [&] { local_step(); global_step(); });   // per step, no allocation
+//   or, for a step with a carried state S (#V by k; it.prepare_carried(S.size()) once beforehand):
+//   it.advance(X, S, rest, size, [&] { ... });
 //   it.last_reldv();   // +infinity before the first step and after invalidate()
 #include <Eigen/Core>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -67,8 +70,9 @@ class FixedPointIteration {
     advance(X, no_carried_state_, rest, size, step);
   }
   // The same for a step that also reads and writes a state of its own, carried from step to step
-  // (carried: #V by k, vertex v's rows [k v, k v + k)): it is extrapolated together with the vertices.
-  // Its size may change between steps (a change of method); then the momentum restarts.
+  // (carried: #V by k, vertex v's rows [k v, k v + k), at most prepare_carried()'s size): it is
+  // extrapolated together with the vertices. Its size may change between steps (a change of method);
+  // then the momentum restarts.
   template <class Step>
   void advance(std::vector<Eigen::Vector3d>& X, std::vector<Eigen::Vector3d>& carried,
                const std::vector<Eigen::Vector3d>& rest, double size, Step&& step) {
@@ -87,12 +91,18 @@ class FixedPointIteration {
     restart();
   }
 
+  // Sizes the buffers for a carried state of up to `size` rows (allocates; not during a step).
+  void prepare_carried(size_t size);
+  // Bytes prepare_carried(size) allocates.
+  static int64_t carried_bytes(size_t size) { return 2 * static_cast<int64_t>(size * sizeof(Eigen::Vector3d)); }
+
   void set_acceleration(bool on, settings::Momentum momentum) {
     accelerate_ = on;
     momentum_ = momentum;
     restart();
   }
   bool acceleration() const { return accelerate_; }
+  const settings::Momentum& momentum() const { return momentum_; }
   // Whether the step now running (or the last one) was applied at an extrapolated point, where the
   // step's residuals say as much about the extrapolation as about the step.
   bool extrapolated() const { return extrapolated_; }
@@ -111,10 +121,11 @@ class FixedPointIteration {
   std::vector<Eigen::Vector3d> point_;     // y: where the last step applied T
   std::vector<Eigen::Vector3d> current_;   // x_k: the iterate before the last step
   std::vector<Eigen::Vector3d> velocity_;  // x_k - x_{k-1}, then x_{k+1} - x_k
-  std::vector<double> agreement_;          // (T(y) - y) . momentum per vertex
+  std::vector<double> agreement_;          // (T(y) - y) . velocity per vertex
   std::vector<uint8_t> hold_;              // steps a vertex goes on without momentum
-  // The same for a carried state (#V by k; sized by its first accelerated step).
+  // The same for a carried state (up to prepare_carried()'s size; the last step's used carried_size_).
   std::vector<Eigen::Vector3d> carried_current_, carried_velocity_;
+  size_t carried_size_ = 0;
   std::vector<Eigen::Vector3d> no_carried_state_;  // empty
 };
 

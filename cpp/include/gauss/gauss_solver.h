@@ -95,6 +95,7 @@ class GaussSolver {
   // method's local-global iteration.
   void set_acceleration(bool on);
   bool acceleration() const { return acceleration_; }
+  const settings::Momentum& momentum() const { return iteration_.momentum(); }  // the method's
 
   // --- Method: the next step's local step; pins, styles and the factorization stay. ---
   // The first switch to Method::cubic prepares its per-vertex data (O(#V), no factorization). With it,
