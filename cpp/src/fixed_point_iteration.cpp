@@ -48,10 +48,6 @@ void FixedPointIteration::move_to_momentum_point(std::vector<Vector3d>& X, std::
   const int n = static_cast<int>(X.size());
   if (carried.size() > carried_velocity_.size())
     throw std::logic_error("FixedPointIteration: the carried state is larger than prepare_carried() made room for");
-  if (carried.size() != carried_size_) {  // another method's state: its momentum means nothing here
-    carried_size_ = carried.size();
-    restart();
-  }
   extrapolated_ = accelerate_ && has_momentum_;
   if (!extrapolated_) {
     point_ = X;  // same sizes: no allocation

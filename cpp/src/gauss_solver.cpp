@@ -314,12 +314,12 @@ void GaussSolver::step() {
   const parallel::ScopedThreads scoped(threads);
   const auto start = Clock::now();
   // The normalized frame's longest bounding-box side is 1.
-  const auto step = [this] {
+  const auto map = [this] {
     local_global_step();
     if (keep_volume_) volume_.restore(topo_, X_);
   };
-  if (method_ == Method::cubic) iteration_.advance(X_, cubic_.carried_state(), rest_, 1.0, step);
-  else iteration_.advance(X_, rest_, 1.0, step);
+  if (method_ == Method::cubic) iteration_.advance(X_, cubic_.carried_state(), rest_, 1.0, map);
+  else iteration_.advance(X_, rest_, 1.0, map);
   ++step_count_;
   tuner_.record(threads, ms_since(start));
   timings_.threads = threads;

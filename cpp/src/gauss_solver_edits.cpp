@@ -90,12 +90,11 @@ void GaussSolver::set_method(Method method) {
     update_cubic_styles();
   }
   method_ = method;
-  set_acceleration(acceleration_);
+  set_acceleration(acceleration());  // the method's momentum
   iteration_.invalidate();
 }
 
 void GaussSolver::set_acceleration(bool on) {
-  acceleration_ = on;
   iteration_.set_acceleration(on, method_ == Method::cubic ? settings::cubic_momentum : settings::gauss_momentum);
 }
 

@@ -71,8 +71,8 @@ class FixedPointIteration {
   }
   // The same for a step that also reads and writes a state of its own, carried from step to step
   // (carried: #V by k, vertex v's rows [k v, k v + k), at most prepare_carried()'s size): it is
-  // extrapolated together with the vertices. Its size may change between steps (a change of method);
-  // then the momentum restarts.
+  // extrapolated together with the vertices. Its size may change between steps (a change of method)
+  // only after invalidate() or set_acceleration(): the momentum of another state means nothing.
   template <class Step>
   void advance(std::vector<Eigen::Vector3d>& X, std::vector<Eigen::Vector3d>& carried,
                const std::vector<Eigen::Vector3d>& rest, double size, Step&& step) {
@@ -123,9 +123,8 @@ class FixedPointIteration {
   std::vector<Eigen::Vector3d> velocity_;  // x_k - x_{k-1}, then x_{k+1} - x_k
   std::vector<double> agreement_;          // (T(y) - y) . velocity per vertex
   std::vector<uint8_t> hold_;              // steps a vertex goes on without momentum
-  // The same for a carried state (up to prepare_carried()'s size; the last step's used carried_size_).
+  // The same for a carried state (up to prepare_carried()'s size).
   std::vector<Eigen::Vector3d> carried_current_, carried_velocity_;
-  size_t carried_size_ = 0;
   std::vector<Eigen::Vector3d> no_carried_state_;  // empty
 };
 

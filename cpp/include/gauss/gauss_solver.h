@@ -94,7 +94,7 @@ class GaussSolver {
   // the vertices. Off: the plain iteration of Algorithm 1. Either way a step ends on a step of the
   // method's local-global iteration.
   void set_acceleration(bool on);
-  bool acceleration() const { return acceleration_; }
+  bool acceleration() const { return iteration_.acceleration(); }
   const settings::Momentum& momentum() const { return iteration_.momentum(); }  // the method's
 
   // --- Method: the next step's local step; pins, styles and the factorization stay. ---
@@ -108,7 +108,8 @@ class GaussSolver {
   void set_cubic_lambda(double lambda);  // settings::cubic_lambda
   double cubic_lambda() const { return cubic_lambda_; }
 
-  // One iteration of Algorithm 1.
+  // One iteration of the method's local-global step (Algorithm 1 for Gauss), applied at the
+  // momentum point when accelerated, then Keep Volume if it is on.
   void step();
   // Steps until a step's reldV is below `tolerance` (settings::tolerance), at most max_steps (>= 0)
   // times; returns the number of steps taken (0 if converged() already holds for this tolerance).
@@ -222,7 +223,6 @@ class GaussSolver {
   ThreadTuner tuner_;
   int step_count_ = 0;
   FixedPointIteration iteration_;  // reldV and the acceleration
-  bool acceleration_ = settings::acceleration.default_value;
   double tolerance_ = settings::tolerance.default_value;
 };
 
