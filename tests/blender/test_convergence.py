@@ -170,10 +170,11 @@ def test_a_converged_object_waits_while_the_others_step(addon):
             live.tick(budget=1e9)
             if first in live.converged:
                 break
-        steps = first.steps
+        steps, others = first.steps, second.steps
         live.tick(budget=1e9)
         live.tick(budget=1e9)
         assert first.steps == steps and second in live.sessions and second not in live.converged
+        assert second.steps == others + 2  # the other object went on stepping, one step a tick
         assert "Converged: 'Suzanne'" in live.status_text()
     finally:
         live.cancel()

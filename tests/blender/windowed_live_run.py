@@ -24,6 +24,7 @@ from windowed_driver import (  # noqa: E402
     check, coords, live_operator, live_run, new_reports, press, push_undo, view3d, viewport_point,
     wait_steps, wait_stopped, window)
 from scene_kit import activate  # noqa: E402
+import helpers  # noqa: E402
 
 SIGMA_PATH = "gauss_stylization.styles[0].sigma"
 TIME_LIMIT = 900.0  # seconds: a 2-core machine busy with other builds redraws a window slowly (idle: ~2 min)
@@ -395,14 +396,10 @@ def cubic_converges_accelerated(name):
     check("a cubic live run converges and says so",
           op is not None and op.live.converged and "Converged" in op.live.status_text(),
           op.live.status_text() if op else "no run")
-    # The plain iteration from the same start: the solver the run built, reset, acceleration off.
+    # The plain iteration from the same start, on the triangles the solver sees.
     core = addon().native.core()
-    mesh = obj.data
-    mesh.calc_loop_triangles()
-    triangles = np.empty((len(mesh.loop_triangles), 3), np.int64)
-    mesh.loop_triangles.foreach_get("vertices", triangles.ravel())
-    plain = core.Solver(original.reshape(-1, 3).astype(np.float64), triangles, method="cubic",
-                        acceleration=False)
+    plain = core.Solver(original.reshape(-1, 3).astype(np.float64), helpers.triangles(obj)[0],
+                        method="cubic", acceleration=False)
     plain.cubic_lambda = settings.cubic_lambda
     plain.set_styles([core.Style.preset("cube")])
     plain_steps = plain.step_until(settings.tolerance, 2000)

@@ -93,6 +93,9 @@ TEST(StepUntil, EditsMakeAConvergedRunStepAgain) {
       [&] { s.set_admm_iterations(1); },
       [&] { s.set_pins(pins); },
       [&] { s.set_pin_positions(target, 1); },
+      [&] { s.set_method(gauss::Method::cubic); },
+      [&] { s.set_cubic_lambda(0.3); },
+      [&] { s.set_method(gauss::Method::gauss); },
       [&] { s.reset(); },
   };
   for (size_t i = 0; i < edits.size(); ++i) {
