@@ -15,7 +15,6 @@ import scene_kit  # noqa: E402
 NAME = "from_example"
 LAMBDA, SIGMA, STEPS = 20.0, 8.0, 300
 EXAMPLE_FACES = 60       # the Decimate modifier's target
-MAX_DIRECTIONS = 32
 EXAMPLE_COLOR = (0.40, 0.62, 0.45, 1.0)
 
 
@@ -33,7 +32,7 @@ def build():
     render_kit.color(source, render_kit.ORIGINAL_COLOR)
     styled = render_kit.color(scene_kit.duplicate(source, "From example"), render_kit.STYLIZED_COLOR)
     scene_kit.activate(styled)
-    result = bpy.ops.object.gauss_style_from_object(source=example.name, max_directions=MAX_DIRECTIONS)
+    result = bpy.ops.object.gauss_style_from_object(source=example.name)  # the default Max Directions
     if result != {'FINISHED'}:
         raise RuntimeError("gauss_style_from_object returned %s" % result)
     slot = styled.gauss_stylization.styles[0]

@@ -16,12 +16,12 @@ from bpy.props import BoolProperty, IntProperty, StringProperty
 
 from . import bake, runs, schema
 from .errors import NativeModuleError, SettingsError
+from .operators import TICK_SECONDS  # the live run's timer: the same responsiveness
 from .progress import ProgressReport
 from .session import ensure_style_slot
 from .targets import stylize_problem
 from .validation import object_problem, poll_result
 
-TICK_SECONDS = 0.01
 TICK_BUDGET = 0.1  # seconds of baking per tick (at least one frame), so the UI stays responsive
 FRAME_LIMIT = 1048574  # Blender's MAXFRAME: frames range over +-this
 _STEPS = schema.field(schema.OBJECT, "iterations")

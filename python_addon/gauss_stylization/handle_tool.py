@@ -164,12 +164,10 @@ def draw_pins():
     gpu.state.depth_test_set('NONE')
     gpu.state.blend_set('ALPHA')
     for run in runs.live_runs():
-        if not run.sessions:  # a bake (no sessions, no scratch), or a run still being set up
-            continue
-        tool = tool_of(run)
-        for session in run.sessions:
+        for session in run.sessions:  # a bake has none (and no scratch for a tool)
             if not usable(session):
                 continue
+            tool = tool_of(run)
             handles = tool.handles_of(session)
             points = handles.drawn
             if not len(points):

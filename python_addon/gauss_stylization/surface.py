@@ -33,11 +33,9 @@ def coords_and_triangles(obj, cached_topology=False):
     return coords, _triangles["triangles"]
 
 
-def face_normals(obj, coords=None, triangles=None):
+def face_normals(obj):
     """Unit normals (#T by 3) and areas (#T) of the mesh's triangles, in object space."""
-    if coords is None:
-        coords, triangles = coords_and_triangles(obj)
-    return directions.triangle_normals(coords, triangles)
+    return directions.triangle_normals(*coords_and_triangles(obj))
 
 
 def evaluated_face_normals(obj, depsgraph):
