@@ -44,13 +44,17 @@ class LiveRun:
         self.setup = SolverSetup(planned.plans)
         self.sessions = []
         self.paused = {}     # session -> why it cannot step now
-        self.converged = set()  # sessions not stepped because they converged (read at the last tick)
         self.next = 0        # index of the session the next tick starts with
         self.tick_ms = deque(maxlen=TIMINGS_KEPT)  # ms of the last TIMINGS_KEPT ticks that stepped
 
     @property
     def preparing(self):
         return self.setup is not None
+
+    @property
+    def converged(self):
+        """The sessions a tick leaves alone because they converged (as their last sync left them)."""
+        return {s for s in self.sessions if s.converged and s.busy is None and s not in self.paused}
 
     # -- set-up -------------------------------------------------------------------
 
@@ -86,30 +90,23 @@ class LiveRun:
                 outcome.stopped.append((session, "the object was deleted or its mesh replaced"))
                 continue
             if session.busy is not None:  # re-factoring for new pins on another thread
-                self.converged.discard(session)
                 continue
             problem = session.sync_settings()
             if problem is not None:
                 if self.paused.get(session) != problem:
                     outcome.paused.append((session.name, problem))
                 self.paused[session] = problem
-                self.converged.discard(session)
                 continue
             self.paused.pop(session, None)
             if session.busy is not None:  # the sync began re-factoring for new pins: wait for it
-                self.converged.discard(session)
                 continue
             if session.converged:  # and nothing changed since: no step, no CPU
-                self.converged.add(session)
                 continue
-            self.converged.discard(session)
             try:
                 session.step()
             except (SettingsError, ValueError, RuntimeError) as exc:
                 outcome.stopped.append((session, str(exc)))
                 continue
-            if session.converged:
-                self.converged.add(session)
             stepped += 1
             self.next = (index + 1) % count
             if time.perf_counter() - start > budget:
@@ -125,7 +122,6 @@ class LiveRun:
         """Restore ``session``'s object as far as it exists and take it out of the run."""
         self.sessions.remove(session)
         self.paused.pop(session, None)
-        self.converged.discard(session)
         self.next = 0
         session.cancel()
 
