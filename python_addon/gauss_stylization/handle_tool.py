@@ -121,7 +121,12 @@ def tool_of(run):
 
 
 def _show_hint(run, context, tool):
-    run.notes[NAME] = tool.hint()
+    """The drag's hint in the header and status bar, redrawn only when it changed (a drag sends a
+    mouse move per pixel; the run's ticks refresh the rest of the status text)."""
+    hint = tool.hint()
+    if NAME in run.notes and run.notes[NAME] == hint:
+        return
+    run.notes[NAME] = hint
     run.show_status(context)
 
 
