@@ -1,31 +1,36 @@
 #!/usr/bin/env python3
 """Package the add-on for installation in Blender.
 
-    python3 scripts/package_addon.py BUILD_DIR OUT_DIR [--verify-install]
+    python3 scripts/package_addon.py BUILD_DIR OUT_DIR [--wheels WHEEL...] [--verify-install]
 
-BUILD_DIR is a build tree of scripts/build.sh (it holds the compiled solver module,
-BUILD_DIR/addon/gauss_stylization/gauss_core*.so). Writes to OUT_DIR:
+BUILD_DIR is a build tree of scripts/build.sh: it holds core_facts.json (the solver's defaults,
+limits and presets, which the add-on reads when the module cannot load) and the staged module
+BUILD_DIR/addon/gauss_stylization/gauss_core*.so. The add-on's Python files come from
+python_addon/gauss_stylization/ (never stale). Writes to OUT_DIR, printing one line per zip:
 
-  gauss_stylization-VERSION-addon-TAG.zip      legacy add-on: Preferences > Add-ons > Install...;
-      one top-level folder gauss_stylization/
-  gauss_stylization-VERSION-extension-TAG.zip  extension (Blender 4.2+): Preferences > Get
-      Extensions > Install from Disk...; blender_manifest.toml at the root; only for a Python
-      that some Blender 4.2+ runs (not for 3.10)
+Without --wheels (the Blender tests' and the README's local build):
+  gauss_stylization-VERSION-addon-cpXY-linux_x86_64.zip     classic add-on with BUILD_DIR's module:
+      Preferences > Add-ons > Install...; one top-level folder gauss_stylization/
 
-TAG names the Python the module was built for (e.g. cp311-linux_x86_64): the zip only
-works in a Blender that runs that Python version. The add-on's Python files come from
-python_addon/gauss_stylization/ (never stale), the .so and core_facts.json (the solver's
-defaults, limits and presets, which the add-on reads when the .so cannot load) from the build. The zips are
-reproducible (sorted entries, fixed timestamps).
+With --wheels WHEEL... (gauss_core wheels of scripts/build_wheel.sh or cibuildwheel, any Pythons and
+platforms), for each Python among them:
+  gauss_stylization-VERSION-extension-cpXY-PLATFORM.zip     extension (Blender 4.2+), one per platform
+      (linux_x64, windows_x64, macos_arm64, macos_x64: those the wheels cover), made by Blender's own
+      tooling (blender_ext.py build --split-platforms, scripts/blender_ext_tool.py) from a manifest
+      that lists the wheels, the platforms and the files permission, then checked with Blender's
+      validator (blender_ext.py validate). Preferences > Get Extensions > Install from Disk...
+  gauss_stylization-VERSION-addon-cpXY-TAG.zip              classic add-on per wheel, the module
+      taken out of the wheel (TAG: linux_x86_64, win_amd64, macosx_arm64, macosx_x86_64)
 
---verify-install installs the legacy zip into a throw-away Blender user configuration
-(BLENDER_USER_CONFIG / BLENDER_USER_SCRIPTS in a temporary folder, so the machine's own
-configuration is not touched), enables it and stylizes a sphere with it, using `blender`
-from PATH (or $BLENDER).
+Which Blender releases run which Python is written once, in BLENDER_FOR_PYTHON below: the manifest's
+blender_version_min/max, the README.txt in each zip (which Blender loads it, which zip the other
+Blenders need) and the tests derive from it. A zip only works in a Blender that runs the Python its
+module was built for.
 
-Which Blender releases run which Python is written once, in BLENDER_FOR_PYTHON below: the
-manifest's blender_version_min/max and the README.txt in each zip (which Blender loads it,
-the glibc it needs, which zip the other Blenders need) derive from it.
+--verify-install installs the linux classic zip for this Python into a throw-away Blender user
+configuration (BLENDER_USER_CONFIG / BLENDER_USER_SCRIPTS in a temporary folder, so the machine's own
+configuration is not touched), enables it and stylizes a sphere with it, using `blender` from PATH
+(or $BLENDER).
 """
 
 import argparse
@@ -33,13 +38,15 @@ import ast
 import glob
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
 import tomllib
 import zipfile
 
-import module_reach  # scripts/module_reach.py: what the module needs from the system
+import blender_ext_tool  # scripts/blender_ext_tool.py: Blender's own extension build/validate tool
+import module_reach  # scripts/module_reach.py: what a locally built module needs from the system
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SOURCE = os.path.join(REPO, "python_addon", "gauss_stylization")
@@ -50,14 +57,23 @@ ZIP_DATE = (1980, 1, 1, 0, 0, 0)
 SO_PATTERN = re.compile(r"^gauss_core\.cpython-(?P<major>\d)(?P<minor>\d+)-(?P<platform>[^.]+)\.so$")
 
 # Which Blender runs which Python (the module only loads in the Python it was built for): official
-# blender.org releases, first and last inclusive, with the numpy they bundle; a Linux distribution's
-# blender package runs the system Python instead ("also"). The one place these facts are written.
+# blender.org releases, first and last inclusive (None: every later release so far; the next Python
+# change will end it), with the numpy they bundle; a Linux distribution's blender package runs the
+# system Python instead ("also"). The one place these facts are written.
 BLENDER_FOR_PYTHON = {
     "3.10": {"official": ((3, 1), (4, 0)), "numpy": "1.x", "also": ()},
     "3.11": {"official": ((4, 1), (5, 0)), "numpy": "1.x", "also": ("Debian 12's blender package (3.4.1)",)},
-    "3.13": {"official": ((5, 1), (5, 1)), "numpy": "2.x", "also": ()},
+    "3.13": {"official": ((5, 1), None), "numpy": "2.x", "also": ()},
 }
 EXTENSIONS_SINCE = (4, 2)  # the first Blender that installs extensions (blender_manifest.toml)
+# Blender's extension platforms this project builds wheels for (release.yml), and the name each has in
+# a classic zip's file name (Python's platform tags, as before extensions existed).
+PLATFORMS = {"linux-x64": "linux_x86_64", "windows-x64": "win_amd64",
+             "macos-arm64": "macosx_arm64", "macos-x64": "macosx_x86_64"}
+# gauss_core-0.1.0-cp311-cp311-manylinux_2_28_x86_64.whl (no build tag)
+WHEEL_PATTERN = re.compile(r"^gauss_core-(?P<version>[^-]+)-cp(?P<major>\d)(?P<minor>\d+)-cp\d+-(?P<platform>[^-]+)\.whl$")
+# The module's file inside a wheel: .so (Linux, macOS) or .pyd (Windows).
+MODULE_IN_WHEEL = re.compile(r"^gauss_core\.[^/]+\.(so|pyd)$")
 
 
 def fail(message):
@@ -79,12 +95,16 @@ def release(version):
 
 
 def releases(first, last):
+    """"4.2 to 5.0", "5.1", or "5.1 and later" (last None)."""
+    if last is None:
+        return "%s and later" % release(first)
     return release(first) if first == last else "%s to %s" % (release(first), release(last))
 
 
 def blender_ranges(python, addon_min):
     """Official Blender releases that load a module built for `python`, as (first, last) pairs of
-    (major, minor): for the classic zip, and for the extension zip (None: no extension Blender)."""
+    (major, minor), last None for "and later": for the classic zip, and for the extension zip (None: no
+    extension Blender)."""
     row = BLENDER_FOR_PYTHON.get(python)
     if row is None:
         fail("the module was built for Python %s, which no Blender release runs (Blender runs %s): build "
@@ -92,7 +112,7 @@ def blender_ranges(python, addon_min):
              % (python, ", ".join(BLENDER_FOR_PYTHON)))
     first, last = row["official"]
     classic = (max(first, addon_min), last)
-    extension = (max(first, EXTENSIONS_SINCE), last) if last >= EXTENSIONS_SINCE else None
+    extension = (max(first, EXTENSIONS_SINCE), last) if last is None or last >= EXTENSIONS_SINCE else None
     return classic, extension
 
 
@@ -110,7 +130,8 @@ def native_module(build_dir):
         fail("unexpected module name %s (expected gauss_core.cpython-XY-PLATFORM.so)" % found[0])
     python = "%s.%s" % (match["major"], match["minor"])
     if match["platform"] != "x86_64-linux-gnu":
-        fail("built for %s; the manifest only declares linux-x64" % match["platform"])
+        fail("built for %s; only Linux x86-64 build trees are packaged (other platforms: --wheels)"
+             % match["platform"])
     return found[0], python, "cp%s%s-linux_x86_64" % (match["major"], match["minor"])
 
 
@@ -127,19 +148,20 @@ def module_glibc(so_path):
     return ".".join(map(str, newest)) if newest else "(any version)"
 
 
-def addon_files(so_path):
-    """(path on disk, name inside the package) of everything that ships, sorted."""
-    files = []
-    for name in sorted(os.listdir(SOURCE)):
-        if name.endswith(".py"):
-            files.append((os.path.join(SOURCE, name), name))
+def facts_file(build_dir):
+    facts = os.path.join(build_dir, "addon", PACKAGE, "core_facts.json")
+    if not os.path.isfile(facts):
+        fail("no core_facts.json in %s: build first (bash scripts/build.sh %s)"
+             % (os.path.dirname(facts), build_dir))
+    return facts
+
+
+def python_files():
+    """(path on disk, name inside the package) of the add-on's Python sources, sorted."""
+    files = [(os.path.join(SOURCE, name), name) for name in sorted(os.listdir(SOURCE)) if name.endswith(".py")]
     if not any(name == "__init__.py" for _, name in files):
         fail("no __init__.py in %s" % SOURCE)
-    facts = os.path.join(os.path.dirname(so_path), "core_facts.json")
-    if not os.path.isfile(facts):
-        fail("no core_facts.json next to %s: rebuild (bash scripts/build.sh)" % so_path)
-    files += [(facts, "core_facts.json"), (so_path, os.path.basename(so_path))]
-    return sorted(files, key=lambda entry: entry[1])
+    return files
 
 
 def write_zip(path, entries):
@@ -158,40 +180,41 @@ def read(path):
 
 
 def mode_of(name):
-    return 0o755 if name.endswith(".so") else 0o644
+    return 0o755 if name.endswith((".so", ".pyd")) else 0o644
 
 
-def manifest_text(version, python, extension_range):
+def toml_list(values):
+    return "[%s]" % ", ".join('"%s"' % value for value in values)
+
+
+def manifest_text(version, python, extension_range, platforms, wheel_paths):
+    """blender_manifest.toml for the wheels of one Python (paths relative to the extension's root)."""
     with open(MANIFEST_TEMPLATE, encoding="utf-8") as handle:
         text = handle.read()
     first, last = extension_range
-    # blender_version_max is the first release the extension does NOT support.
+    # blender_version_max is the first release the extension does NOT support; none when no later
+    # Blender is known to run another Python.
+    maximum = ('blender_version_max = "%d.%d.0"' % (last[0], last[1] + 1) if last is not None else
+               "# No blender_version_max: every Blender since %s runs Python %s so far." % (release(first), python))
     for placeholder, value in (("@VERSION@", version), ("@PYTHON@", python),
-                               ("@BLENDER_MIN@", "%d.%d.0" % first),
-                               ("@BLENDER_MAX@", "%d.%d.0" % (last[0], last[1] + 1))):
+                               ("@BLENDER_MIN@", "%d.%d.0" % first), ("@BLENDER_MAX_LINE@", maximum),
+                               ("@PLATFORMS@", toml_list(platforms)), ("@WHEELS@", toml_list(wheel_paths))):
         text = text.replace(placeholder, value)
     if re.search(r"@[A-Z_]+@", text):
         fail("unfilled placeholder in %s" % MANIFEST_TEMPLATE)
-    manifest = tomllib.loads(text)  # must parse, and follow Blender's rules for these fields
-    for key in ("schema_version", "id", "version", "name", "tagline", "maintainer", "type",
-                "blender_version_min", "blender_version_max", "license"):
-        if key not in manifest:
-            fail("manifest lacks %r" % key)
-    tagline = manifest["tagline"]
-    if len(tagline) > 64 or not (tagline[-1].isalnum() or tagline[-1] in ")]}"):
-        fail("manifest tagline must be at most 64 characters and not end with punctuation")
+    manifest = tomllib.loads(text)  # must parse; Blender's validator checks the rest
     if manifest["id"] != PACKAGE:
         fail("manifest id must be %r" % PACKAGE)
     return text
 
 
-def readme_text(kind, version, so_name, python, blender, glibc, addon_min):
+def readme_text(kind, version, module_line, python, blender, addon_min):
     """README.txt of a zip: which Blender loads it, what it needs, which zip the other Blenders need."""
     row = BLENDER_FOR_PYTHON[python]
     loads = ["official Blender %s (Python %s, numpy %s)" % (releases(*blender), python, row["numpy"])]
     if kind == "add-on":
         loads += list(row["also"])
-    others = ["  official Blender %s%s (Python %s): the add-on zip whose name ends in -cp%s-linux_x86_64.zip"
+    others = ["  official Blender %s%s (Python %s): the zip whose name has -cp%s-"
               % (releases(*blender_ranges(other, addon_min)[0]), "".join(", " + a for a in entry["also"]),
                  other, other.replace(".", ""))
               for other, entry in BLENDER_FOR_PYTHON.items() if other != python]
@@ -202,8 +225,7 @@ def readme_text(kind, version, so_name, python, blender, glibc, addon_min):
     return "\n".join([
         "Gauss Stylization %s, %s for Blender" % (version, kind),
         "",
-        "Solver module: %s, built for Python %s, Linux x86-64." % (so_name, python),
-        "It needs glibc %s or newer and no other system library." % glibc,
+        module_line,
         "",
         "Loads in: " + "; ".join(loads) + ".",
         "Other Blenders run another Python and cannot load this module; they need:",
@@ -213,6 +235,100 @@ def readme_text(kind, version, so_name, python, blender, glibc, addon_min):
         "Install: " + install,
         "",
     ])
+
+
+def wheel_facts(wheel_path, blender_ext):
+    """(python "3.11", Blender platform "linux-x64", classic tag "cp311-linux_x86_64", version) of a
+    gauss_core wheel, the platform read with Blender's own rule (blender_ext.py)."""
+    match = WHEEL_PATTERN.match(os.path.basename(wheel_path))
+    if match is None:
+        fail("%s is not a gauss_core wheel (gauss_core-VERSION-cpXY-cpXY-PLATFORM.whl)" % wheel_path)
+    platforms = blender_ext.blender_platforms_from_wheel_platform(match["platform"])
+    if len(platforms) != 1 or platforms[0] not in PLATFORMS:
+        fail("%s is for %s; the extension ships %s" % (wheel_path, ", ".join(platforms), ", ".join(PLATFORMS)))
+    return ("%s.%s" % (match["major"], match["minor"]), platforms[0],
+            "cp%s%s-%s" % (match["major"], match["minor"], PLATFORMS[platforms[0]]), match["version"])
+
+
+def module_from_wheel(wheel_path):
+    """(file name, bytes) of the gauss_core module inside a wheel."""
+    with zipfile.ZipFile(wheel_path) as wheel:
+        found = [name for name in wheel.namelist() if MODULE_IN_WHEEL.match(name)]
+        if len(found) != 1:
+            fail("%s must hold one top-level gauss_core module, holds %s" % (wheel_path, found))
+        return found[0], wheel.read(found[0])
+
+
+def wheel_module_line(python, platforms, wheel_names):
+    linux = [name for name in wheel_names if "manylinux_" in name]
+    glibc = re.search(r"manylinux_(\d+)_(\d+)_", linux[0]) if linux else None
+    return "\n".join(["Solver module: the gauss_core wheel%s %s, built for Python %s (%s)."
+                      % ("s" if len(wheel_names) > 1 else "", ", ".join(wheel_names), python, ", ".join(platforms))]
+                     + (["On Linux it needs glibc %s.%s or newer and no other system library." % glibc.groups()]
+                        if glibc else []))
+
+
+def build_extensions(python, wheels, version, addon_min, facts, out_dir, blender_ext):
+    """The extension zips of one Python's wheels, one per platform, by Blender's own tool; returns them."""
+    _, extension_range = blender_ranges(python, addon_min)
+    if extension_range is None:
+        print("no extension zip for Python %s: Blender %s and later run another Python"
+              % (python, release(EXTENSIONS_SINCE)))
+        return []
+    platforms = sorted({platform for _, platform in wheels}, key=list(PLATFORMS).index)
+    names = sorted(os.path.basename(path) for path, _ in wheels)
+    tag = "cp" + python.replace(".", "")
+    with tempfile.TemporaryDirectory(prefix="gauss_extension_") as stage:
+        for path, name in python_files() + [(facts, "core_facts.json")]:
+            shutil.copyfile(path, os.path.join(stage, name))
+        os.makedirs(os.path.join(stage, "wheels"))
+        for path, _ in wheels:
+            shutil.copyfile(path, os.path.join(stage, "wheels", os.path.basename(path)))
+        with open(os.path.join(stage, "README.txt"), "w", encoding="utf-8") as handle:
+            handle.write(readme_text("extension", version, wheel_module_line(python, platforms, names), python,
+                                     extension_range, addon_min))
+        with open(os.path.join(stage, "blender_manifest.toml"), "w", encoding="utf-8") as handle:
+            handle.write(manifest_text(version, python, extension_range, platforms,
+                                       ["./wheels/" + name for name in names]))
+        target = os.path.join(out_dir, "%s-%s-extension-%s.zip" % (PACKAGE, version, tag))
+        made = [target.replace(".zip", "-%s.zip" % platform.replace("-", "_")) for platform in platforms]
+        for path in made:
+            if os.path.exists(path):
+                os.remove(path)
+        code, output = blender_ext_tool.run("build", "--source-dir", stage, "--output-filepath", target,
+                                            "--split-platforms")
+        missing = [path for path in made if not os.path.isfile(path)]
+        if code != 0 or missing:
+            fail("Blender's extension build failed (exit code %d, missing %s):\n%s" % (code, missing, output))
+    for path in made:
+        code, output = blender_ext_tool.run("validate", path)
+        if code != 0:
+            fail("Blender's validator rejects %s:\n%s" % (path, output))
+        print("extension zip (Blender %s, %s, validated): %s"
+              % (releases(*extension_range), path.rsplit("-", 1)[1][:-4], path))
+    return made
+
+
+def build_classic_from_wheel(wheel_path, python, tag, version, addon_min, facts, out_dir):
+    classic_range, _ = blender_ranges(python, addon_min)
+    module_name, module_bytes = module_from_wheel(wheel_path)
+    glibc = re.search(r"manylinux_(\d+)_(\d+)_", os.path.basename(wheel_path))
+    line = "Solver module: %s (from %s), built for Python %s, %s.%s" % (
+        module_name, os.path.basename(wheel_path), python, tag.split("-", 1)[1],
+        "\nIt needs glibc %s.%s or newer and no other system library." % glibc.groups() if glibc else "")
+    return write_classic(out_dir, version, tag, python, classic_range, addon_min,
+                         [(module_name, module_bytes), ("core_facts.json", read(facts))], line)
+
+
+def write_classic(out_dir, version, tag, python, classic_range, addon_min, extra_files, module_line):
+    """The classic add-on zip: one folder gauss_stylization/ with the sources, the module and facts."""
+    readme = readme_text("add-on", version, module_line, python, classic_range, addon_min)
+    files = [(name, read(path)) for path, name in python_files()] + extra_files + [("README.txt", readme.encode())]
+    path = os.path.join(out_dir, "%s-%s-addon-%s.zip" % (PACKAGE, version, tag))
+    write_zip(path, [("%s/%s" % (PACKAGE, name), data, mode_of(name)) for name, data in files])
+    print("classic add-on zip (official Blender %s%s): %s"
+          % (releases(*classic_range), "".join(", " + a for a in BLENDER_FOR_PYTHON[python]["also"]), path))
+    return path
 
 
 VERIFY_SCRIPT = r'''
@@ -277,40 +393,54 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("build_dir")
     parser.add_argument("out_dir")
+    parser.add_argument("--wheels", nargs="+", metavar="WHEEL",
+                        help="gauss_core wheels: make the extension zips (one per platform) and a classic zip "
+                             "per wheel from them instead of the classic zip of BUILD_DIR's module")
     parser.add_argument("--verify-install", action="store_true",
                         help="install the classic zip into a temporary Blender user config and use it")
     args = parser.parse_args()
     build_dir, out_dir = os.path.abspath(args.build_dir), os.path.abspath(args.out_dir)
     info = addon_info()
     version = ".".join(str(part) for part in info["version"])
-    so_path, python, tag = native_module(build_dir)
     addon_min = tuple(info["blender"][:2])
-    classic_range, extension_range = blender_ranges(python, addon_min)
-    glibc = module_glibc(so_path)
-    packaged = [(name, read(path), mode_of(name)) for path, name in addon_files(so_path)]
-    so_name = os.path.basename(so_path)
+    facts = facts_file(build_dir)
     os.makedirs(out_dir, exist_ok=True)
-    print("add-on %s, solver module for Python %s (%s), needs glibc %s" % (version, python, so_name, glibc))
+    this_python = "%d.%d" % sys.version_info[:2]
+    to_verify = None
 
-    classic = os.path.join(out_dir, "%s-%s-addon-%s.zip" % (PACKAGE, version, tag))
-    readme = readme_text("add-on", version, so_name, python, classic_range, glibc, addon_min)
-    write_zip(classic, [("%s/%s" % (PACKAGE, name), data, mode)
-                        for name, data, mode in packaged + [("README.txt", readme.encode("utf-8"), 0o644)]])
-    print("classic add-on zip (official Blender %s%s): %s"
-          % (releases(*classic_range), "".join(", " + a for a in BLENDER_FOR_PYTHON[python]["also"]), classic))
-
-    if extension_range is None:
-        print("no extension zip: Blender %s and later run another Python than %s"
-              % (release(EXTENSIONS_SINCE), python))
+    if args.wheels:
+        try:
+            blender_ext = blender_ext_tool.module()
+        except RuntimeError as exc:
+            fail(str(exc))
+        by_python = {}
+        for path in args.wheels:
+            python, platform, tag, wheel_version = wheel_facts(os.path.abspath(path), blender_ext)
+            if wheel_version != version:
+                fail("%s is version %s, the add-on %s: rebuild it (bash scripts/build_wheel.sh)"
+                     % (path, wheel_version, version))
+            if any(platform == other for _, other in by_python.get(python, [])):
+                fail("two wheels for Python %s on %s" % (python, platform))
+            by_python.setdefault(python, []).append((os.path.abspath(path), platform))
+            classic = build_classic_from_wheel(path, python, tag, version, addon_min, facts, out_dir)
+            if python == this_python and platform == "linux-x64":
+                to_verify = classic
+        for python, wheels in sorted(by_python.items()):
+            build_extensions(python, wheels, version, addon_min, facts, out_dir, blender_ext)
     else:
-        extension = os.path.join(out_dir, "%s-%s-extension-%s.zip" % (PACKAGE, version, tag))
-        readme = readme_text("extension", version, so_name, python, extension_range, glibc, addon_min)
-        manifest = manifest_text(version, python, extension_range)
-        write_zip(extension, packaged + [("README.txt", readme.encode("utf-8"), 0o644),
-                                         ("blender_manifest.toml", manifest.encode("utf-8"), 0o644)])
-        print("extension zip (Blender %s): %s" % (releases(*extension_range), extension))
+        so_path, python, tag = native_module(build_dir)
+        classic_range, _ = blender_ranges(python, addon_min)
+        so_name = os.path.basename(so_path)
+        module_line = ("Solver module: %s, built for Python %s, Linux x86-64.\n"
+                       "It needs glibc %s or newer and no other system library."
+                       % (so_name, python, module_glibc(so_path)))
+        to_verify = write_classic(out_dir, version, tag, python, classic_range, addon_min,
+                                  [(so_name, read(so_path)), ("core_facts.json", read(facts))], module_line)
+        this_python = python
     if args.verify_install:
-        verify_install(classic, python)
+        if to_verify is None:
+            fail("--verify-install needs a linux-x64 wheel for Python %s" % this_python)
+        verify_install(to_verify, this_python)
 
 
 if __name__ == "__main__":

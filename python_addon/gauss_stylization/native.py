@@ -36,8 +36,6 @@ def load_failure_message(exc):
     one it needs, so the message names the Python, numpy and glibc this Blender runs and the
     modules the add-on folder holds (README: "Which Blender can load this build").
     """
-    import glob
-    import os
     import platform
     import re
     try:
@@ -47,21 +45,29 @@ def load_failure_message(exc):
         numpy_version = "none importable"
     libc, libc_version = platform.libc_ver()
     python = "%d.%d" % sys.version_info[:2]
-    folder = os.path.dirname(os.path.abspath(__file__))
     found = {}  # file name -> the Python it was built for
-    for path in sorted(glob.glob(os.path.join(folder, "gauss_core*"))):
+    for path in bundled_modules():
         built_for = re.search(r"\.cpython-(\d)(\d+)-", os.path.basename(path))
         found[os.path.basename(path)] = "%s.%s" % built_for.groups() if built_for else "unknown"
-    if python in found.values():
+    if not found and not isinstance(exc, ModuleNotFoundError):
+        problem = ("the gauss_core module installed for it (from the extension's wheel) does not load "
+                   "here")
+        fix = ("install the extension zip built for Python %s and this platform (its name has -cp%d%d-), "
+               "and numpy as Blender bundles it" % (python, sys.version_info[0], sys.version_info[1]))
+    elif python in found.values():
         problem = "the module for Python %s is there but does not load on this system" % python
         fix = ("build the module on this machine (a GLIBC version in the import error means this "
-               "system's glibc is older than the module needs)")
+               "system's glibc is older than the module needs; a numpy version, that the module was built "
+               "with a pybind11 that cannot read this numpy)")
     else:
         problem = ("this add-on only holds " + ", ".join(
             "a module for Python %s (%s)" % (v, name) for name, v in found.items())
-            if found else "this add-on holds no gauss_core module at all")
-        fix = ("install the add-on zip built for Python %s (its name ends in -cp%d%d-linux_x86_64.zip) "
-               "or build one against a Python %s" % (python, sys.version_info[0], sys.version_info[1], python))
+            if found else "this add-on holds no gauss_core module at all, and none is installed from an "
+            "extension's wheel")
+        fix = ("install the add-on zip built for Python %s (its name ends in -cp%d%d-linux_x86_64.zip; "
+               "in Blender 4.2 and later the extension zip with -cp%d%d- in its name) or build one against "
+               "a Python %s" % (python, sys.version_info[0], sys.version_info[1], sys.version_info[0],
+                                sys.version_info[1], python))
     return ("The Gauss solver (gauss_core native module) cannot load: Blender runs Python %s with "
             "numpy %s on %s %s, and %s. Fix: %s; see the README, \"Which Blender can load this "
             "build\". (%s: %s)" % (platform.python_version(), numpy_version, libc or "a C library",
@@ -74,13 +80,36 @@ _facts = None
 _ring_presets = None
 
 
+def bundled_modules():
+    """The gauss_core files in the add-on's own folder (the classic zip bundles one)."""
+    import glob
+    folder = os.path.dirname(os.path.abspath(__file__))
+    return sorted(glob.glob(os.path.join(folder, "gauss_core*")))
+
+
+def import_gauss_core():
+    """The solver module, found the way this add-on was installed.
+
+    A classic zip bundles it in the add-on folder: then only that copy is used, so that a top-level
+    gauss_core of another build (e.g. an extension's wheel for another version) cannot shadow it. An
+    extension ships it as a wheel, which Blender installs as a top-level module.
+    """
+    if bundled_modules():
+        from . import gauss_core as module
+    else:
+        import gauss_core as module
+    return module
+
+
 def core():
     """Return the ``gauss_core`` module or raise NativeModuleError."""
     global _core
     if _core is None:
         try:
-            from . import gauss_core as module
-        except ImportError as exc:
+            module = import_gauss_core()
+        except Exception as exc:  # noqa: BLE001 - a module's init may raise anything; Blender must not fail
+            # ImportError (wrong Python, missing file, a numpy it cannot read: the module refuses to
+            # load), OSError or SystemError from the loader: all of them mean "cannot load".
             raise NativeModuleError(load_failure_message(exc)) from exc
         _core = module
     return _core
