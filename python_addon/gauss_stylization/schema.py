@@ -38,7 +38,7 @@ def preset_label(name):
 
 def _preset_items():
     # .blend files store the number, so preset i of the solver's registry is number i
-    # (the registry only ever appends; see docs/python_api.md).
+    # (the registry only ever appends; see docs/architecture.md).
     items = [(preset_identifier(name), preset_label(name),
               "Prefer the face normals of a %s" % preset_label(name).lower(), number)
              for number, name in enumerate(FACTS.presets)]

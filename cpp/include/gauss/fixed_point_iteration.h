@@ -31,7 +31,7 @@
 // Spot 181 -> 67, armadillo 369 -> 126; cubic (lambda 0.2): bunny 35K 328 -> 39, Spot 124 -> 28,
 // armadillo 408 -> 33; the share of faces within 10 degrees of a cube normal stays within 0.02 of the
 // plain run's. Anderson acceleration and over-relaxation were measured too and lost
-// (docs/python_api.md, "Accelerated").
+// (docs/performance.md, "Converging in fewer steps").
 //
 // Usage (X: the solver's current vertices, #V by 3):
 //   FixedPointIteration it(num_vertices);

@@ -85,7 +85,7 @@ inline constexpr const Option* options[] = {&keep_volume, &acceleration};
 // bunny, Spot and the armadillo: the momentum factor beta, and for how many steps a vertex whose step
 // turned against its momentum goes without (so flapping sliver regions are not kicked further). The
 // cubic method's iteration also carries its ADMM state and creeps more slowly: a stronger momentum
-// and no per-vertex hold measured fastest with the same converged share (docs/python_api.md). The
+// and no per-vertex hold measured fastest with the same converged share (docs/performance.md). The
 // Gauss method's hold keeps its converged share at the plain run's: without it (hold 0) the 43K
 // armadillo stops after 60 steps at share 0.820 against the plain 0.833 (126 steps, 0.836 with it);
 // bunny 35K 47 vs 54 steps, Spot 73 vs 67, the same shares within 0.002.
