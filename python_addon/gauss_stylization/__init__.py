@@ -30,14 +30,25 @@ else:
                    orientation, surface, style_from_data, gauss_sphere, gpu_compat, sphere_overlay,
                    sphere_editing, handle_tool, operators, slot_operators, ui, bake, bake_operators, bake_ui)
 
+import inspect
+
 import bpy
 
 classes = (properties.classes + operators.classes + slot_operators.classes + style_from_data.classes
            + sphere_editing.classes + bake_operators.classes + ui.classes + bake_ui.classes)
 
 
+def _tooltip_from_docstring(cls):
+    """Blender shows a class's docstring as its tooltip verbatim, so the indentation of a
+    docstring's second line would show as a stray indent: give it one paragraph instead."""
+    doc = cls.__dict__.get("__doc__")
+    if doc and "bl_description" not in cls.__dict__:
+        cls.bl_description = " ".join(inspect.cleandoc(doc).split())
+
+
 def register():
     for cls in classes:
+        _tooltip_from_docstring(cls)
         bpy.utils.register_class(cls)
     properties.register_pointer()
     runs.register_handlers()

@@ -32,6 +32,7 @@ class Panel(enum.Enum):
     """Where a field's row is drawn (ui.py), in schema order."""
     MAIN = "main"       # Gauss Stylization panel, under Stylize / Reset
     METHOD = "method"   # Styles sub-panel, above the slot list
+    SPHERE = "sphere"   # Styles sub-panel, under From Object / Auto Orient (shown before any slot exists)
     STYLES = "styles"   # Styles sub-panel, under the slot list
     SLOT = "slot"       # Styles sub-panel, the active slot's settings
     SOLVER = "solver"   # Solver sub-panel
@@ -67,16 +68,19 @@ class Field:
     text:     the row's label where the panel says it shorter than ``label``
     relevant: owner -> bool; False where the setting has no effect (row hidden, value not checked)
     shown:    owner -> bool; whether the panel shows the row (default: where it is relevant)
+    update:   (owner, context) -> None, called by Blender after the property was changed (kinds
+              that take it: Choice)
     """
 
     widget = "prop"  # plain layout.prop row
 
     def __init__(self, name, label, tooltip="", live=Live.NOTHING, panel=None, text=None, relevant=None,
-                 shown=None):
+                 shown=None, update=None):
         self.name, self.label, self.tooltip = name, label, tooltip
         self.live, self.panel, self.text = live, panel, text
         self.relevant = relevant or _always
         self.shown = shown or self.relevant
+        self.update = update
 
     def read(self, owner):
         return getattr(owner, self.name)
@@ -126,13 +130,21 @@ def _float32_inside(low, high):
     return float(low32), float(high32)
 
 
+def shown_decimals(*values):
+    """Decimals a number field needs so each of ``values`` shows a significant digit (Blender's
+    default, 2, shows 0.001 as "0.00"); at least 2, at most 6 (Blender's limit)."""
+    small = [abs(v) for v in values if 0.0 < abs(v) < 1.0]
+    return min(6, max([2] + [int(math.ceil(-math.log10(v) - 1e-9)) for v in small]))
+
+
 class Float(_Number):
     cast, noun = float, "a number"
 
     def prop(self, _classes):
         low, high = _float32_inside(*self.hard)
         return FloatProperty(name=self.label, description=self.tooltip, default=self.default,
-                             min=low, max=high, soft_min=max(self.soft[0], low), soft_max=min(self.soft[1], high))
+                             min=low, max=high, soft_min=max(self.soft[0], low), soft_max=min(self.soft[1], high),
+                             precision=shown_decimals(self.default, self.soft[0]))
 
 
 class Int(_Number):
@@ -170,7 +182,9 @@ class Choice(Field):
         self.identifiers = {item[0] for item in self.items}
 
     def prop(self, _classes):
-        return EnumProperty(name=self.label, description=self.tooltip, items=self.items, default=self.default)
+        options = {"update": self.update} if self.update else {}
+        return EnumProperty(name=self.label, description=self.tooltip, items=self.items, default=self.default,
+                            **options)
 
     def check(self, owner, where):
         # A number saved by a newer version reads back as "" (no item has it).
@@ -186,6 +200,13 @@ class Text(Field):
 
     def prop(self, _classes):
         return StringProperty(name=self.label, description=self.tooltip, default=self.default)
+
+
+class FilePath(Text):
+    """A file's path (the panel offers the file browser); empty: the caller's default."""
+
+    def prop(self, _classes):
+        return StringProperty(name=self.label, description=self.tooltip, default=self.default, subtype='FILE_PATH')
 
 
 class VertexGroup(Text):

@@ -77,6 +77,34 @@ def rotation_angle(matrix):
     return np.arccos(np.clip((trace - 1.0) / 2.0, -1.0, 1.0))
 
 
+AXIS_WORDS_DEGREES = 10.0  # a direction this close to an axis is called after the axis
+
+
+def direction_in_words(vector):
+    """'+X', '-Z' for a direction within AXIS_WORDS_DEGREES of an axis, else '(0.58, -0.58, 0.58)'."""
+    vector = np.asarray(vector, np.float64) / np.linalg.norm(vector)
+    k = int(np.argmax(np.abs(vector)))
+    if abs(vector[k]) >= np.cos(np.radians(AXIS_WORDS_DEGREES)):
+        return "%s%s" % ("-" if vector[k] < 0 else "+", "XYZ"[k])
+    return "(%.2f, %.2f, %.2f)" % tuple(vector)
+
+
+def rotation_in_words(matrix):
+    """A rotation (3 by 3, the style's frame -> the object's) as an artist reads it: the axis it
+    turns about and where each of the style's axes now lies in the object, e.g. "90.0 degrees
+    about -X: the style's X axis lies along +X, Y along -Z, Z along +Y"."""
+    matrix = np.asarray(matrix, np.float64)
+    angle = float(rotation_angle(matrix))
+    if angle < np.radians(0.05):
+        return "not turned: the style's axes lie along the object's"
+    axis = np.array([matrix[2, 1] - matrix[1, 2], matrix[0, 2] - matrix[2, 0], matrix[1, 0] - matrix[0, 1]])
+    if np.linalg.norm(axis) < 1e-6:  # a half turn: the axis is the eigenvector of eigenvalue 1
+        values, vectors = np.linalg.eigh(matrix + matrix.T)
+        axis = vectors[:, int(np.argmax(values))]
+    lying = ", ".join("%s along %s" % (name, direction_in_words(matrix[:, i])) for i, name in enumerate("XYZ"))
+    return "%.1f degrees about %s: the style's axes %s" % (np.degrees(angle), direction_in_words(axis), lying)
+
+
 def _skew(vectors):
     """[v]x of each row of vectors (N by 3) -> N by 3 by 3."""
     out = np.zeros((len(vectors), 3, 3))

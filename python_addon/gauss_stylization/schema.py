@@ -13,7 +13,7 @@ solver call for slot fields (styles.make_style); see python_addon/README.md.
 
 from . import native
 from .fields import (
-    Bool, Choice, Direction, Euler, Float, Index, Int, Live, Normals, Panel, Slots, Text, VertexGroup,
+    Bool, Choice, Direction, Euler, FilePath, Float, Index, Int, Live, Normals, Panel, Slots, Text, VertexGroup,
 )
 
 FACTS = native.facts()
@@ -78,6 +78,13 @@ def _not_custom(slot):
     return slot.preset != CUSTOM
 
 
+MAX_FRAME = 1048574  # Blender's MAXFRAME: frames range over +-this
+
+
+def _own_bake_range(settings):
+    return not settings.bake_scene_range
+
+
 def _has_rings(slot):
     """Does the slot's preset have rings (Cylinder, Cone, ...: whatever the solver says)?"""
     rings = native.ring_presets()
@@ -90,12 +97,25 @@ NORMAL = (
               default=(0.0, 0.0, 1.0)),
 )
 
+def style_label(identifier):
+    """What the panel calls a slot's Style ('OCTAHEDRON' -> "Octahedron", 'CUSTOM' -> "Custom")."""
+    return next((item[1] for item in _preset_items() if item[0] == identifier), identifier)
+
+
+def _name_after_style(slot, _context):
+    """A slot is called after its style until the artist renames it: a name that is a style's
+    label (or empty) follows the Style."""
+    if slot.name == "" or slot.name in {item[1] for item in _preset_items()}:
+        slot.name = style_label(slot.preset)
+
+
 # GaussStyleSlot: one style and the region it applies to.
 SLOT = (
-    # 'name' is what the UIList shows and renames (double-click).
-    Text("name", "Name", default="Style"),
     Choice("preset", "Style", "Shape whose face normals this region prefers, or your own normals",
-           _preset_items(), DEFAULT_PRESET, live=Live.STYLES, panel=Panel.SLOT),
+           _preset_items(), DEFAULT_PRESET, live=Live.STYLES, panel=Panel.SLOT, update=_name_after_style),
+    # 'name' is what the UIList shows and renames (double-click). After 'preset', so that a saved
+    # name is written after the Style (whose change renames a slot still called after its style).
+    Text("name", "Name", default=DEFAULT_PRESET_LABEL),
     Float("sigma", "Sigma", "Sharpness: higher values pull normals closer to the preferred ones",
           soft=(0.1, 20.0), live=Live.STYLES, panel=Panel.SLOT),
     Float("mu", "Mu", "Strength of this style relative to the others",
@@ -153,11 +173,23 @@ OBJECT = (
     Int("bake_steps", "Bake Steps", "Solver steps per frame of an animation bake (with Warm Start the "
         "first frame runs Script Steps, the others continue from the previous frame)",
         default=10, hard=(1, 100000), soft=(1, 200), panel=Panel.BAKE),
+    Bool("bake_warm_start", "Warm Start", "Bake Animation starts each frame from the previous frame's result "
+         "(steady style, no flicker). Off: every frame is stylized on its own, so frame ranges baked apart "
+         "(render farm) give the same frames", default=True, panel=Panel.BAKE),
+    Bool("bake_scene_range", "Scene Range", "Bake Animation bakes the scene's frame range (Frame Start to End); "
+         "off: the Start and End below", default=True, panel=Panel.BAKE),
+    Int("bake_frame_start", "Start", "First frame Bake Animation bakes", default=1,
+        hard=(-MAX_FRAME, MAX_FRAME), panel=Panel.BAKE, shown=_own_bake_range),
+    Int("bake_frame_end", "End", "Last frame Bake Animation bakes", default=250,
+        hard=(-MAX_FRAME, MAX_FRAME), panel=Panel.BAKE, shown=_own_bake_range),
+    FilePath("bake_filepath", "Cache File", "The .pc2 file a bake writes (a path starting with // is relative "
+             "to the .blend file); empty: '<object>_gauss.pc2' next to the .blend file, or in the temporary "
+             "folder while the .blend file is not saved", panel=Panel.BAKE),
     Bool("show_gauss_sphere", "Show Gauss Sphere",
          "Draw the Gauss sphere in a corner of the 3D view: the active style's g as a heat map, its "
          "preferred normals as dots and the mesh's face normals as points. With a Custom style active, "
          "click the sphere to add a normal, drag a dot to move it, right-click to remove the nearest",
-         default=False, panel=Panel.STYLES, text="Gauss Sphere"),
+         default=False, panel=Panel.SPHERE, text="Gauss Sphere"),
     Slots("styles", "Styles", "GaussStyleSlot", SLOT, owner_name=lambda slot: "Style '%s'" % slot.name),
     Index("active_style_index", "Active Style"),
 )

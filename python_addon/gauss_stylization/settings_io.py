@@ -15,8 +15,6 @@ import json
 from . import schema
 from .fields import read_all, write_all
 
-_PRESET = schema.field(schema.SLOT, "preset")
-_PRESET_LABELS = {item[0]: item[1] for item in _PRESET.items}
 
 
 def to_dict(settings):
@@ -78,4 +76,4 @@ def _named(spec):
     if "name" in spec:
         return spec
     preset = spec.get("preset", schema.DEFAULT_PRESET)
-    return dict(spec, name=_PRESET_LABELS.get(preset, preset))
+    return dict(spec, name=schema.style_label(preset))

@@ -13,9 +13,10 @@ from bpy.props import EnumProperty, FloatProperty
 from . import native
 from .errors import NativeModuleError
 from .mesh_io import read_selected_faces
-from .schema import CUSTOM
+from .schema import CUSTOM, style_label
 from .styles import active_slot
 from .validation import poll_result
+from .viewport import redraw_sidebars
 
 
 def _settings(context):
@@ -63,6 +64,7 @@ class _AddItem:
         item = collection.add()
         setattr(owner, index_name, len(collection) - 1)
         self.name_item(item, len(collection))
+        redraw_sidebars(context)
         return {'FINISHED'}
 
     def name_item(self, item, count):
@@ -79,6 +81,7 @@ class _RemoveActive:
             return {'CANCELLED'}
         collection.remove(index)
         setattr(owner, index_name, min(index, len(collection) - 1))
+        redraw_sidebars(context)
         return {'FINISHED'}
 
 
@@ -88,7 +91,7 @@ class OBJECT_OT_gauss_style_add(_StyleList, _AddItem, bpy.types.Operator):
     bl_label = "Add Style"
 
     def name_item(self, slot, count):
-        slot.name = "Style %d" % count
+        slot.name = style_label(slot.preset)  # called after its style until renamed (schema.py)
 
 
 class OBJECT_OT_gauss_style_remove(_StyleList, _RemoveActive, bpy.types.Operator):
@@ -112,6 +115,7 @@ class OBJECT_OT_gauss_style_move(_StyleList, bpy.types.Operator):
             return {'CANCELLED'}
         settings.styles.move(index, target)
         settings.active_style_index = target
+        redraw_sidebars(context)
         return {'FINISHED'}
 
 
@@ -152,6 +156,7 @@ class OBJECT_OT_gauss_normals_from_faces(_NormalList, bpy.types.Operator):
         slot.set_custom_normals(slot.custom_normal_list() + [tuple(d) for d in directions.tolist()])
         self.report({'INFO'}, "Added {:,} direction{} from {:,} face{}".format(
             len(directions), "" if len(directions) == 1 else "s", len(normals), "" if len(normals) == 1 else "s"))
+        redraw_sidebars(context)
         return {'FINISHED'}
 
 

@@ -9,6 +9,7 @@ from mathutils import Matrix
 from . import directions, native, orientation, schema, settings_io, styles, surface
 from .errors import NativeModuleError, SettingsError
 from .validation import poll_result
+from .viewport import redraw_sidebars
 
 MAX_DIRECTIONS = 32  # default number of directions taken from an example
 
@@ -97,6 +98,7 @@ class OBJECT_OT_gauss_style_from_object(bpy.types.Operator):
         settings.active_style_index = len(settings.styles) - 1
         self.report({'INFO'}, "Added a style with %d directions from '%s' (they cover %.0f%% of its area)"
                     % (len(found), source.name, 100.0 * shares.sum()))
+        redraw_sidebars(context)
         return {'FINISHED'}
 
 
@@ -130,8 +132,9 @@ class OBJECT_OT_gauss_style_auto_orient(bpy.types.Operator):
             return {'CANCELLED'}
         rotation, fit = orientation.best_rotation(style, normals, areas, search)
         slot.orientation = Matrix(rotation.tolist()).to_euler('XYZ')
-        self.report({'INFO'}, "Style '%s' turned by %.1f degrees: the mesh fits it with mean g %.3f"
-                    % (slot.name, np.degrees(orientation.rotation_angle(rotation)), fit))
+        self.report({'INFO'}, "Style '%s' turned %s (object axes); the mesh fits it with mean g %.3f"
+                    % (slot.name, orientation.rotation_in_words(rotation), fit))
+        redraw_sidebars(context)
         return {'FINISHED'}
 
 

@@ -49,6 +49,17 @@ def redraw_viewports(context, sidebars=True):
                 region.tag_redraw()
 
 
+def redraw_sidebars(context):
+    """Redraw the sidebar of every 3D view in every window: an operator that changes what the
+    Gauss panels show must say so, or they stay as they were until the pointer passes over them."""
+    for window in context.window_manager.windows:
+        for area in window.screen.areas:
+            if area.type == 'VIEW_3D':
+                for region in area.regions:
+                    if region.type == 'UI':
+                        region.tag_redraw()
+
+
 class Rect:
     def __init__(self, xmin, ymin, xmax, ymax):
         self.xmin, self.ymin, self.xmax, self.ymax = xmin, ymin, xmax, ymax

@@ -12,16 +12,38 @@ def _names(obj):
 
 def test_add_move_remove_slots():
     obj = helpers.suzanne(levels=0)
-    for _ in range(3):
-        assert bpy.ops.object.gauss_style_add() == {'FINISHED'}
     settings = obj.gauss_stylization
-    assert _names(obj) == ["Style 1", "Style 2", "Style 3"] and settings.active_style_index == 2
+    for preset in ('CUBE', 'OCTAHEDRON', 'TETRAHEDRON'):
+        assert bpy.ops.object.gauss_style_add() == {'FINISHED'}
+        settings.styles[-1].preset = preset
+    assert _names(obj) == ["Cube", "Octahedron", "Tetrahedron"] and settings.active_style_index == 2
     bpy.ops.object.gauss_style_move(direction='UP')
-    assert _names(obj) == ["Style 1", "Style 3", "Style 2"] and settings.active_style_index == 1
+    assert _names(obj) == ["Cube", "Tetrahedron", "Octahedron"] and settings.active_style_index == 1
     settings.active_style_index = 0
     assert bpy.ops.object.gauss_style_move(direction='UP') == {'CANCELLED'}  # already first
     bpy.ops.object.gauss_style_remove()
-    assert _names(obj) == ["Style 3", "Style 2"] and settings.active_style_index == 0
+    assert _names(obj) == ["Tetrahedron", "Octahedron"] and settings.active_style_index == 0
+
+
+def test_a_slot_is_named_after_its_style_until_the_artist_renames_it():
+    obj = helpers.suzanne(levels=0)
+    bpy.ops.object.gauss_style_add()
+    slot = obj.gauss_stylization.styles[0]
+    assert slot.name == "Cube"
+    slot.preset = 'OCTAHEDRON'
+    assert slot.name == "Octahedron"
+    slot.preset = 'CUSTOM'
+    assert slot.name == "Custom"
+    slot.name = "Ears"
+    slot.preset = 'CUBE'
+    assert slot.name == "Ears"
+
+
+def test_a_saved_name_survives_loading_with_its_style(addon):
+    """Settings are written name after Style, so a name that happens to be another style's stays."""
+    obj = helpers.suzanne(levels=0)
+    helpers.settings_io.apply_dict(obj.gauss_stylization, {"styles": [{"name": "Cube", "preset": 'OCTAHEDRON'}]})
+    assert _names(obj) == ["Cube"]
 
 
 def test_custom_normal_buttons():
