@@ -92,7 +92,7 @@ def direction_in_words(vector):
 def rotation_in_words(matrix):
     """A rotation (3 by 3, the style's frame -> the object's) as an artist reads it: the axis it
     turns about and where each of the style's axes now lies in the object, e.g. "90.0 degrees
-    about -X: the style's X axis lies along +X, Y along -Z, Z along +Y"."""
+    about -X: the style's axes X along +X, Y along -Z, Z along +Y"."""
     matrix = np.asarray(matrix, np.float64)
     angle = float(rotation_angle(matrix))
     if angle < np.radians(0.05):
