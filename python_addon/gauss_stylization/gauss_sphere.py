@@ -109,6 +109,23 @@ def facing(view_directions, triangles):
     return triangles[view_directions[triangles, 2].sum(axis=1) > 0.0]
 
 
+AXIS_LABEL_REACH = 1.18  # axis labels sit this many radii from the centre along the axis, seen from the view
+
+
+def axis_labels(turn, where):
+    """Where the object's axes X, Y, Z are labelled around the sphere at ``where``: [(name, x, y,
+    facing)], x and y the label's centre in region pixels, ``facing`` True when the axis points
+    towards the viewer. turn: V (3 by 3) of the module docstring. An axis in the view's plane is
+    labelled just outside the rim, one pointing at the viewer nearer the centre (as Blender's
+    navigation gizmo does)."""
+    labels = []
+    for index, name in enumerate("XYZ"):
+        seen = np.asarray(turn, np.float64)[:, index]
+        x, y = to_pixels(AXIS_LABEL_REACH * seen[None], where)[0]
+        labels.append((name, float(x), float(y), bool(seen[2] >= 0.0)))
+    return labels
+
+
 def disc(where, segments=96, grow=1.0):
     """Triangles (segments * 3 by 2 pixels) filling the sphere's outline, ``grow`` times its radius."""
     angles = np.linspace(0.0, 2.0 * np.pi, segments + 1)

@@ -78,12 +78,30 @@ def draw_points(points, colour, size):
     gpu.state.point_size_set(1.0)
 
 
+def saved_state():
+    """The blend mode and depth test now, as restore_state() takes them (None where this
+    Blender cannot read one back)."""
+    blend = gpu.state.blend_get() if hasattr(gpu.state, "blend_get") else None
+    depth = gpu.state.depth_test_get() if hasattr(gpu.state, "depth_test_get") else None
+    return blend, depth
+
+
+def restore_state(state):
+    """Put back what saved_state() read; without a getter, blending off (Blender's own default
+    for draw handlers) and the depth test left alone."""
+    blend, depth = state
+    gpu.state.blend_set(blend or 'NONE')
+    if depth is not None:
+        gpu.state.depth_test_set(depth)
+
+
 class ViewDrawHandler:
     """A draw handler of every 3D view's main region, added and removed once.
 
-    ``draw()`` runs at ``stage`` ('POST_VIEW': world space, 'POST_PIXEL': region pixels). An
-    exception in it would be printed at every redraw, so each distinct one is printed once
-    (named after ``title``) and the blend state put back."""
+    ``draw()`` runs at ``stage`` ('POST_VIEW': world space, 'POST_PIXEL': region pixels). Blender
+    and other add-ons draw after it with the state it leaves, so the blend mode and depth test
+    are put back as they were, also when it fails. An exception in it would be printed at every
+    redraw, so each distinct one is printed once (named after ``title``)."""
 
     def __init__(self, title, draw, stage):
         self.title, self.draw, self.stage = title, draw, stage
@@ -91,6 +109,7 @@ class ViewDrawHandler:
         self.failures = set()
 
     def _run(self):
+        state = saved_state()
         try:
             self.draw()
         except Exception as exc:
@@ -98,7 +117,8 @@ class ViewDrawHandler:
             if message not in self.failures:
                 self.failures.add(message)
                 print("%s: %s" % (self.title, message))
-            gpu.state.blend_set('NONE')
+        finally:
+            restore_state(state)
 
     def add(self):
         if self.handle is None:

@@ -17,7 +17,7 @@ import time
 from collections import deque
 
 from .errors import SettingsError
-from .progress import progress_text
+from .progress import convergence_text, progress_text
 from .session import TIMINGS_KEPT, Session
 from .settings_io import to_dict
 from .solver_setup import SolverSetup
@@ -186,7 +186,9 @@ class LiveRun:
             text = TITLE + ": step %d" % sessions[0].steps
             if converged:
                 text += "  |  " + CONVERGED
-            elif sessions[0].step_ms and self.tick_ms:
+            elif towards:
+                text += "  |  " + towards
+            if not converged and sessions[0].step_ms and self.tick_ms:
                 text += "  |  %.1f ms/step, %.1f ms/tick" % (sessions[0].step_ms[-1], self.tick_ms[-1])
         else:
             steps = [session.steps for session in sessions]
@@ -204,6 +206,7 @@ class LiveRun:
             busy = session.busy
             if busy is not None:
                 text += "  |  " + ("'%s': " % session.name if len(sessions) > 1 else "") + progress_text(
+            towards = convergence_text(sessions[0].reldv, sessions[0].applied["tolerance"])
                     busy.text(), busy.fraction)
         return text
 
@@ -235,3 +238,6 @@ class LiveRun:
             else:
                 lines.append(("%s: step %d" % (session.name, session.steps), 'MESH_DATA'))
         return lines
+                towards = convergence_text(session.reldv, session.applied["tolerance"])
+                if towards:
+                    lines.append((towards, 'BLANK1'))

@@ -23,9 +23,8 @@ from .viewport import existing_area, redraw_viewports
 
 TICK_SECONDS = 0.01
 PANEL_SECONDS = 0.25  # how often a live run redraws the sidebar (the viewport: every tick that steps)
-KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel",  # what modal_events does with keys
-             "Drag a pin: move its handle")  # and handle_tool
-HINT = "  |  ".join(KEY_HINTS)
+KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel")  # what modal_events does with keys
+PIN_HINT = "Drag a pin: move its handle"  # what handle_tool does, where a run has pins
 SETUP_HINT = "Esc: cancel"
 EDITS_UNDO_NAME = "Edits during Stylize"  # the undo step of what was edited during a cancelled run
 _STEPS = schema.field(schema.OBJECT, "iterations")
@@ -43,8 +42,8 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
     bl_label = "Stylize"
     bl_options = {'REGISTER', 'UNDO'}
 
-    # The range and default of the object's Script Steps, which a script run defaults to.
-    iterations: _STEPS.prop({}, label="Iterations",
+    # The name, range and default of the object's Script Steps, which a script run defaults to.
+    iterations: _STEPS.prop({},
                             tooltip="Solver steps, 0: until converged, at most %d (scripts: defaults to each "
                                     "object's Script Steps setting)" % schema.UNTIL_CONVERGED_CAP)
     # Settings a kept live run ended with, so the redo panel repeats that run (JSON, see settings_io).
@@ -235,7 +234,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         text = None
         if not clear:
             notes = "".join("  |  " + note for note in self.notes.values() if note)
-            text = self.live.status_text() + notes + "  |  " + (SETUP_HINT if self.live.preparing else HINT)
+            text = self.live.status_text() + notes + "  |  " + "  |  ".join(self.key_hints())
         area = existing_area(self._area_pointer)
         if area is not None:
             area.header_text_set(text)
@@ -245,7 +244,15 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
     def panel_state(self):
         """(title, [(text, icon)], key hints) for the sidebar's box while the run goes on (ui.py)."""
         live = self.live
-        return live.panel_title(), live.panel_lines(), (SETUP_HINT,) if live.preparing else KEY_HINTS
+        return live.panel_title(), live.panel_lines(), self.key_hints()
+
+    def key_hints(self):
+        """The keys that act on the run now; the pin hint only where an object has a Pin Group."""
+        if self.live.preparing:
+            return (SETUP_HINT,)
+        pinned = any(session.object_alive() and session.obj.gauss_stylization.pin_group
+                     for session in self.live.sessions)
+        return KEY_HINTS + (PIN_HINT,) if pinned else KEY_HINTS
 
     @property
     def tick_ms(self):

@@ -183,8 +183,8 @@ class NewObjectTarget:
 
     The original's data is never written. While a live run goes on the original is drawn as a
     wireframe, so the result can be seen through it (hiding it would leave the panel without an
-    active object); keep() draws it as before and selects the new object, restore() removes the
-    new object and its mesh."""
+    active object); keep() draws it as before but hidden and selects the new object, restore()
+    removes the new object and its mesh."""
 
     kind = 'NEW_OBJECT'
 
@@ -249,10 +249,16 @@ class NewObjectTarget:
             pass
 
 
+        """The kept result takes the original's place in the view: the original is hidden (as
+        Blender's own convert-to-new-object tools do), the new object selected and active."""
 def _select(obj, state):
     """Select or deselect ``obj`` in the current view layer; False if it is not in it."""
     try:
         obj.select_set(state)
+            try:
+                self.original.hide_set(True)
+            except (RuntimeError, ReferenceError):  # not in this view layer, or deleted during the run
+                pass
     except (RuntimeError, ReferenceError):  # not in this view layer (an excluded collection), or deleted
         return False
     return True
@@ -276,3 +282,19 @@ def target_key(obj):
     """The "Gauss Stylized" key of ``obj`` or None."""
     keys = obj.data.shape_keys
     return None if keys is None else keys.key_blocks.get(SHAPE_KEY_NAME)
+def refusal_before_run(obj, depsgraph):
+    """What the panel says before Stylize is clicked when the Output cannot take the result: Use
+    Modifiers reads a mesh whose vertex or face count differs from the mesh's (make_target refuses
+    it then, also for differences the counts do not show). None when nothing is known against it."""
+    settings = obj.gauss_stylization
+    if not settings.use_modifiers or settings.output == 'NEW_OBJECT' or not obj.modifiers:
+        return None
+    shown = obj.evaluated_get(depsgraph).data
+    base = obj.data
+    if (len(shown.vertices), len(shown.polygons)) == (len(base.vertices), len(base.polygons)):
+        return None
+    return ("The modifiers change the vertices or faces ({:,} vertices shown, {:,} in the mesh): the result "
+            "cannot go into the {}. Choose Output: New Object, or turn Use Modifiers off").format(
+        len(shown.vertices), len(base.vertices), "shape key" if settings.output == 'SHAPE_KEY' else "mesh")
+
+

@@ -13,6 +13,7 @@ in stages (set-up, then steps) starts each stage's fraction at 0 again. Meant fo
 set-ups and scripted runs here, bakes elsewhere.
 """
 
+import math
 import time
 
 import bpy
@@ -25,6 +26,20 @@ def progress_text(text, fraction=None):
     if fraction is None:
         return text + "..."
     return "%s... %d%%" % (text, int(100.0 * min(max(fraction, 0.0), 1.0)))
+
+
+def short_number(value):
+    """3.1e-3 rather than 3.1e-03: short enough for the sidebar."""
+    mantissa, exponent = ("%.1e" % value).split("e")
+    return "%se%d" % (mantissa, int(exponent))
+
+
+def convergence_text(change, tolerance):
+    """How far a run is from converging: "change 3.1e-3 → 1.0e-3" (its last step's relative change
+    and the Tolerance it converges at), or None before its first step and after a setting changed."""
+    if not math.isfinite(change):
+        return None
+    return "change %s \u2192 %s" % (short_number(change), short_number(tolerance))
 
 
 class ProgressReport:

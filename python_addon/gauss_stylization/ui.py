@@ -1,8 +1,9 @@
 """Sidebar panels (3D view > Sidebar > Gauss) and the style-slot lists."""
 
+import blf
 import bpy
 
-from . import native, operators, runs, schema, styles
+from . import native, operators, output, runs, schema, styles
 from .errors import NativeModuleError
 from .fields import Panel
 from .targets import stylize_objects
@@ -24,8 +25,15 @@ class GAUSS_UL_styles(bpy.types.UIList):
 
 
 class GAUSS_UL_normals(bpy.types.UIList):
+    """Custom normals, one row each: its number, then X Y Z (the active one is highlighted on the
+    Gauss sphere)."""
+
     def draw_item(self, context, layout, data, item, icon, active_data, active_propname, index):
-        layout.prop(item, "vector", text="")
+        split = layout.split(factor=0.16)
+        split.label(text="%d" % (index + 1))
+        row = split.row(align=True)
+        for axis in range(3):
+            row.prop(item, "vector", index=axis, text="")
 
 
 def _mesh_object(context):
@@ -56,7 +64,7 @@ class VIEW3D_PT_gauss_stylization(_GaussPanel, bpy.types.Panel):
         try:
             native.core()
         except NativeModuleError as exc:
-            _wrapped_error(layout, str(exc))
+            wrapped_label(layout, str(exc), 'ERROR')
         for run in runs.live_runs():
             _draw_run_state(layout, run)
         obj = _mesh_object(context)
@@ -65,12 +73,15 @@ class VIEW3D_PT_gauss_stylization(_GaussPanel, bpy.types.Panel):
             return
         count = len(stylize_objects(context))
         if count > 1 and not runs.live_runs():
-            layout.label(text="Stylize acts on the %d selected meshes" % count, icon='INFO')
+            wrapped_label(layout, "Stylize acts on the %d selected meshes" % count, 'INFO')
         row = layout.row(align=True)
         row.scale_y = 1.5
         row.operator("object.gauss_stylize", icon='PLAY')
         row.operator("object.gauss_stylize_reset", icon='LOOP_BACK')
         _draw_rows(_split_column(layout), obj, obj.gauss_stylization, schema.OBJECT, Panel.MAIN)
+        note = output.refusal_before_run(obj, context.view_layer.depsgraph)
+        if note:
+            wrapped_label(layout, note, 'ERROR')
 
 
 class VIEW3D_PT_gauss_styles(_GaussSubPanel, bpy.types.Panel):
@@ -82,10 +93,7 @@ class VIEW3D_PT_gauss_styles(_GaussSubPanel, bpy.types.Panel):
         layout = self.layout
         _draw_rows(_split_column(layout), obj, settings, schema.OBJECT, Panel.METHOD)
         if schema.is_cubic(settings):
-            note = layout.column(align=True)  # short lines: the sidebar is narrow
-            note.label(text="Cubic uses each slot's", icon='INFO')
-            note.label(text="Mu and Rotation, not", icon='BLANK1')
-            note.label(text="its Style or Sigma", icon='BLANK1')
+            wrapped_label(layout, "Cubic uses each slot's Mu and Rotation, not its Style or Sigma", 'INFO')
         row = layout.row()
         row.template_list("GAUSS_UL_styles", "", settings, "styles", settings, "active_style_index", rows=3)
         buttons = row.column(align=True)
@@ -97,8 +105,9 @@ class VIEW3D_PT_gauss_styles(_GaussSubPanel, bpy.types.Panel):
         tools = layout.column(align=True)
         tools.operator("object.gauss_style_from_object", icon='OBJECT_DATA')
         tools.operator("object.gauss_style_auto_orient", icon='ORIENTATION_GIMBAL')
+        _draw_rows(_split_column(layout), obj, settings, schema.OBJECT, Panel.SPHERE)
         if not settings.styles:
-            layout.label(text="Stylize adds a %s style" % schema.DEFAULT_PRESET_LABEL, icon='INFO')
+            wrapped_label(layout, "Stylize adds a %s style" % schema.DEFAULT_PRESET_LABEL, 'INFO')
             return
         col = _split_column(layout)
         _draw_rows(col, obj, settings, schema.OBJECT, Panel.STYLES)
@@ -115,9 +124,9 @@ def _draw_run_state(layout, run):
     box = layout.box().column(align=True)
     box.label(text=title, icon='TIME')
     for text, icon in lines:
-        box.label(text=text, icon=icon)
+        wrapped_label(box, text, icon)
     for hint in hints:
-        box.label(text=hint)
+        wrapped_label(box, hint)
 
 
 def _split_column(layout):
@@ -151,7 +160,7 @@ def _draw_custom_normals(layout, _obj, slot, field):
     buttons.operator("object.gauss_normal_remove", icon='REMOVE', text="")
     layout.operator("object.gauss_normals_from_faces", icon='FACESEL')
     if not slot.custom_normals:
-        layout.label(text="Add at least one normal", icon='ERROR')
+        wrapped_label(layout, "Add at least one normal", 'ERROR')
 
 
 class VIEW3D_PT_gauss_solver(_GaussSubPanel, bpy.types.Panel):
@@ -166,18 +175,47 @@ class VIEW3D_PT_gauss_solver(_GaussSubPanel, bpy.types.Panel):
 _WIDGETS = {"prop": _draw_prop, "vertex_group": _draw_vertex_group, "normals": _draw_custom_normals}
 
 
-def _wrapped_error(layout, text, width=40):
-    col = layout.column(align=True)
-    words, line = text.split(), ""
-    lines = []
-    for word in words:
-        if line and len(line) + len(word) > width:
+# What a label row loses to the panel's margins and its icon, in Blender's UI units (20 px at
+# scale 1), and the font size of labels; measured on Blender 3.4's sidebar.
+LABEL_MARGIN_UNITS = 2.6
+LABEL_POINTS = 11.0
+
+
+def label_width(context=None):
+    """Pixels a label's text has in a sidebar panel row (the region's width less margins and icon)."""
+    context = context or bpy.context
+    region = context.region
+    scale = context.preferences.system.ui_scale
+    width = region.width if region is not None and region.type == 'UI' else 0
+    return max(width - LABEL_MARGIN_UNITS * 20.0 * scale, 8 * 20.0 * scale)  # narrower: Blender clips anyway
+
+
+def text_width(text, context=None):
+    """Pixels ``text`` takes in the UI's font at the current UI scale."""
+    context = context or bpy.context
+    blf.size(0, LABEL_POINTS * context.preferences.system.ui_scale)  # no DPI argument: gone in 4.0
+    return blf.dimensions(0, text)[0]
+
+
+def wrap_text(text, width, measure):
+    """``text`` in lines no wider than ``width`` (by ``measure``), broken between words (a single
+    word wider than that stands on its own line)."""
+    lines, line = [], ""
+    for word in text.split():
+        candidate = (line + " " + word).strip()
+        if line and measure(candidate) > width:
             lines.append(line)
-            line = ""
-        line = (line + " " + word).strip()
-    lines.append(line)
+            candidate = word
+        line = candidate
+    return lines + [line] if line else lines
+
+
+def wrapped_label(layout, text, icon='NONE'):
+    """A label that wraps to the sidebar's width instead of being cut off; the icon on its first line."""
+    col = layout.column(align=True)
+    lines = wrap_text(text, label_width(), text_width)
     for number, part in enumerate(lines):
-        col.label(text=part, icon='ERROR' if number == 0 else 'BLANK1')
+        col.label(text=part, icon=icon if number == 0 else ('BLANK1' if icon != 'NONE' else 'NONE'))
 
 
 classes = (GAUSS_UL_styles, GAUSS_UL_normals,
