@@ -165,7 +165,8 @@ def draw_pins():
     """The draw handler: every live session's pins as dots, the grabbed handle's brighter.
 
     Drawn from the handles' own targets (moved by the drag), not the solver's: no copy of the
-    solver's arrays at every redraw, and the grabbed handle's dots are a slice of the others."""
+    solver's arrays at every redraw, and the grabbed handle's dots are a slice of the others.
+    (gpu_compat.ViewDrawHandler puts the depth and blend state back afterwards.)"""
     gpu.state.depth_test_set('NONE')
     gpu.state.blend_set('ALPHA')
     for run in runs.live_runs():
@@ -185,7 +186,6 @@ def draw_pins():
                 gpu_compat.draw_points(points[:grabbed.start], PIN, DOT_PX)
                 gpu_compat.draw_points(points[grabbed.stop:], PIN, DOT_PX)
                 gpu_compat.draw_points(points[grabbed], GRABBED, DOT_PX)
-    gpu.state.blend_set('NONE')
 
 
 _handler = gpu_compat.ViewDrawHandler("Gauss pin handles", draw_pins, 'POST_VIEW')

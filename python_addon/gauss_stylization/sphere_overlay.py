@@ -22,7 +22,10 @@ MAX_POINTS = 2000  # face normals drawn at most (a sample weighted by area)
 BACKDROP = (0.08, 0.08, 0.08, 0.55)
 NORMAL_POINTS = (0.35, 0.95, 1.0, 0.6)
 DOT, DOT_EDGE, DOT_BEHIND = (1.0, 1.0, 1.0, 1.0), (0.0, 0.0, 0.0, 1.0), (1.0, 1.0, 1.0, 0.35)
+ACTIVE_DOT = (1.0, 0.55, 0.1, 1.0)  # the Custom normal selected in the panel's list
 TEXT = (1.0, 1.0, 1.0, 0.9)
+AXIS_COLOURS = {"X": (1.0, 0.33, 0.33), "Y": (0.55, 0.86, 0.2), "Z": (0.3, 0.56, 1.0)}  # Blender's gizmo's
+AXIS_BEHIND_ALPHA = 0.45
 
 _sphere = None   # (vertices, triangles) of the icosphere, built on first use
 _colours = {}    # key of the style's fields -> (colours of the sphere's vertices, preferred normals)
@@ -111,6 +114,7 @@ def draw(context):
     if colours is None:
         colours = np.tile([0.3, 0.3, 0.3, 1.0], (len(vertices), 1))
 
+    # gpu_compat.ViewDrawHandler puts the blend and depth state back after the handler.
     gpu.state.blend_set('ALPHA')
     gpu.state.depth_test_set('NONE')
     gpu_compat.draw_uniform(gauss_sphere.disc(where, grow=1.06), BACKDROP)
@@ -124,17 +128,39 @@ def draw(context):
     front_pixels = gauss_sphere.to_pixels(front, where)
     gpu_compat.draw_points(front_pixels, DOT_EDGE, 11.0)
     gpu_compat.draw_points(front_pixels, DOT, 7.0)
+    active = active_normal(slot, len(preferred))
+    if active is not None:
+        seen = dots[active]
+        pixel = gauss_sphere.to_pixels(seen[None], where)
+        gpu_compat.draw_points(pixel, DOT_EDGE, 13.0)
+        gpu_compat.draw_points(pixel, ACTIVE_DOT if seen[2] > 0 else ACTIVE_DOT[:3] + (0.5,), 9.0)
+    for name, x, y, facing in gauss_sphere.axis_labels(turn, where):
+        colour = AXIS_COLOURS[name] + ((1.0,) if facing else (AXIS_BEHIND_ALPHA,))
+        _text(name, x, y, colour, centred=True)
     _label(where, "%s%s" % (slot.name if slot else "Gauss sphere", "  (%s)" % problem if problem else ""))
-    gpu.state.blend_set('NONE')
+
+
+def active_normal(slot, count):
+    """Index of the Custom normal selected in the panel's list among ``count`` drawn ones, or None."""
+    if slot is None or slot.preset != CUSTOM or not 0 <= slot.active_normal_index < count:
+        return None
+    return slot.active_normal_index
+
+
+def _text(text, x, y, colour, centred=False):
+    font = 0
+    blf.size(font, 11.0 * bpy.context.preferences.system.ui_scale)  # no DPI argument: gone in 4.0
+    blf.color(font, *colour)
+    if centred:
+        width, height = blf.dimensions(font, text)
+        x, y = x - width / 2.0, y - height / 2.0
+    blf.position(font, x, y, 0.0)
+    blf.draw(font, text)
 
 
 def _label(where, text):
-    font = 0
     scale = bpy.context.preferences.system.ui_scale
-    blf.size(font, 11.0 * scale)  # no DPI argument: optional in 3.4, gone in 4.0
-    blf.color(font, *TEXT)
-    blf.position(font, where.x - where.radius, where.y + where.radius * 1.08 + 4.0 * scale, 0.0)
-    blf.draw(font, text)
+    _text(text, where.x - where.radius, where.y + where.radius * 1.08 + 14.0 * scale, TEXT)
 
 
 _handler = gpu_compat.ViewDrawHandler("Gauss sphere overlay", lambda: draw(bpy.context), 'POST_PIXEL')

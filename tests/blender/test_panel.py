@@ -1,0 +1,221 @@
+"""What the sidebar panels show and how they say it: tooltips, names, precision, rows that fit
+the sidebar, the custom-normal rows, notes before a click, and the live run's distance from
+convergence. Panels are drawn into a recording stand-in for Blender's layout (headless)."""
+
+import bpy
+import numpy as np
+import pytest
+
+import helpers
+
+
+class Layout:
+    """A stand-in for a panel's layout: records labels, props and operators in drawing order
+    (``rows``, shared by every nested column, row, box and split)."""
+
+    def __init__(self, rows=None):
+        self.rows = [] if rows is None else rows
+
+    def label(self, text="", icon='NONE', **_options):
+        self.rows.append(("label", text, icon))
+
+    def prop(self, owner, name, text=None, index=-1, **_options):
+        self.rows.append(("prop", name, text, index))
+
+    def prop_search(self, owner, name, *_args, text=None, **_options):
+        self.rows.append(("prop", name, text, -1))
+
+    def operator(self, idname, **_options):
+        self.rows.append(("operator", idname))
+        return type("Properties", (), {})()
+
+    def template_list(self, list_type, *_args, **_options):
+        self.rows.append(("list", list_type))
+
+    def separator(self, **_options):
+        pass
+
+    def _nested(self, *_args, **_options):
+        return Layout(self.rows)
+
+    column = row = box = split = _nested
+
+
+def draw(panel, context=None):
+    layout = Layout()
+    panel.draw(type("Panel", (), {"layout": layout})(), context or bpy.context)
+    return layout.rows
+
+
+def labels(rows):
+    return [row[1] for row in rows if row[0] == "label"]
+
+
+def props(rows):
+    return [row[1] for row in rows if row[0] == "prop"]
+
+
+def _all_panels(addon):
+    return [addon.ui.VIEW3D_PT_gauss_stylization, addon.ui.VIEW3D_PT_gauss_styles, addon.ui.VIEW3D_PT_gauss_solver,
+            addon.bake_ui.VIEW3D_PT_gauss_bake]
+
+
+def _operator_rna(idname):
+    module, name = idname.split(".")
+    return getattr(getattr(bpy.ops, module), name).get_rna_type()
+
+
+def test_every_operator_tooltip_is_one_paragraph_without_the_docstrings_indent(addon):
+    operators = [cls for cls in addon.classes if issubclass(cls, bpy.types.Operator)]
+    assert len(operators) > 10
+    for cls in operators:
+        text = _operator_rna(cls.bl_idname).description
+        assert text and "\n" not in text and "  " not in text and text == text.strip(), (cls.__name__, text)
+
+
+def test_every_number_shows_its_default_and_smallest_slider_value(addon):
+    schema = addon.schema
+    for table, group in ((schema.OBJECT, addon.properties.GaussSettings),
+                         (schema.SLOT, addon.properties.GaussStyleSlot)):
+        for field in table:
+            if isinstance(field, addon.fields.Float):
+                decimals = group.bl_rna.properties[field.name].precision
+                for value in (field.default, field.soft[0]):
+                    assert value == 0 or round(value, decimals) != 0, (field.name, value, decimals)
+    tolerance = addon.properties.GaussSettings.bl_rna.properties["tolerance"]
+    assert "%.*f" % (tolerance.precision, schema.FACTS.defaults["tolerance"]) != "0.00"
+
+
+def test_the_redo_panel_calls_the_steps_what_the_solver_panel_calls_them(addon):
+    field = addon.schema.field(addon.schema.OBJECT, "iterations")
+    redo = _operator_rna("object.gauss_stylize").properties["iterations"].name
+    assert redo == field.label == "Script Steps"
+    assert "iterations" in props(draw(addon.ui.VIEW3D_PT_gauss_solver, _context_with_object()))
+
+
+def _context_with_object(obj=None):
+    obj = obj or helpers.activate(helpers.suzanne(levels=0))
+    return bpy.context
+
+
+def test_every_label_fits_the_sidebar_or_wraps(addon):
+    objects = [helpers.suzanne(levels=0) for _ in range(3)]
+    for obj in objects:
+        obj.name = "spot_triangulated_2930_with_a_long_name"
+        obj.select_set(True)
+    obj = helpers.activate(objects[0])
+    settings = obj.gauss_stylization
+    settings.method = 'CUBIC'
+    ui = addon.ui
+    width = ui.label_width()
+    for panel in _all_panels(addon):
+        for text in labels(draw(panel)):
+            assert ui.text_width(text) <= width, (panel.__name__, text, ui.text_width(text), width)
+
+
+def test_wrapping_breaks_between_words_and_keeps_every_word(addon):
+    wrap = addon.ui.wrap_text
+    text = "Esc: cancel (nothing is written) and more words here"
+    lines = wrap(text, 12, len)
+    assert " ".join(lines) == text and all(len(line) <= 12 or " " not in line for line in lines)
+    assert wrap("", 10, len) == [] and wrap("averyveryverylongword", 5, len) == ["averyveryverylongword"]
+
+
+def test_a_custom_normal_is_one_row_with_its_number_and_x_y_z(addon):
+    obj = helpers.activate(helpers.suzanne(levels=0))
+    slot = helpers.add_slot(obj, 'CUSTOM', custom_normals=[(0, 0, 1), (1, 0, 0)])
+    layout = Layout()
+    addon.ui.GAUSS_UL_normals.draw_item(None, bpy.context, layout, slot, slot.custom_normals[1], 'NONE',
+                                        slot, "active_normal_index", 1)
+    assert layout.rows == [("label", "2", 'NONE')] + [("prop", "vector", "", axis) for axis in range(3)]
+
+
+def test_the_gauss_sphere_checkbox_shows_before_any_slot_and_stylize_says_what_it_adds(addon):
+    obj = helpers.activate(helpers.suzanne(levels=0))
+    rows = draw(addon.ui.VIEW3D_PT_gauss_styles)
+    assert len(obj.gauss_stylization.styles) == 0 and "show_gauss_sphere" in props(rows)
+    assert "Stylize adds a Cube style" in labels(rows)
+
+
+def test_the_panel_says_before_the_click_that_the_modifiers_keep_the_result_out_of_the_mesh(addon):
+    obj = helpers.activate(helpers.suzanne(levels=0))
+    obj.modifiers.new("Subdivision", 'SUBSURF')
+    obj.gauss_stylization.use_modifiers = True
+    bpy.context.view_layer.update()
+    said = " ".join(labels(draw(addon.ui.VIEW3D_PT_gauss_stylization)))
+    assert "The modifiers change the vertices or faces" in said and "New Object" in said
+    obj.gauss_stylization.output = 'NEW_OBJECT'
+    assert "The modifiers change" not in " ".join(labels(draw(addon.ui.VIEW3D_PT_gauss_stylization)))
+    obj.gauss_stylization.output = 'MESH'
+    obj.modifiers["Subdivision"].levels = 0  # vertices as in the mesh: nothing to say
+    bpy.context.view_layer.update()
+    assert "The modifiers change" not in " ".join(labels(draw(addon.ui.VIEW3D_PT_gauss_stylization)))
+
+
+def test_a_kept_new_object_hides_the_original(addon):
+    obj = helpers.activate(helpers.suzanne(levels=0))
+    assert helpers.stylize(2, output='NEW_OBJECT') == {'FINISHED'}
+    new = bpy.data.objects[obj.name + addon.schema.NEW_OBJECT_SUFFIX]
+    assert obj.hide_get() and not new.hide_get() and bpy.context.view_layer.objects.active == new
+
+
+def test_a_live_run_shows_its_change_against_the_tolerance(addon):
+    obj = helpers.suzanne(levels=0)
+    helpers.add_slot(obj, 'CUBE')
+    live = helpers.live_run([obj])
+    session = live.sessions[0]
+    try:
+        assert not any(text.startswith("change") for text, _ in live.panel_lines())  # before the first step
+        live.tick(budget=1e9)
+        live.tick(budget=1e9)
+        expected = addon.progress.convergence_text(session.reldv, obj.gauss_stylization.tolerance)
+        assert expected.startswith("change ") and expected.endswith("\u2192 1.0e-3")
+        assert (expected, 'BLANK1') in live.panel_lines() and expected in live.status_text()
+    finally:
+        live.cancel()
+
+
+@pytest.mark.parametrize("change, tolerance, text", [
+    (3.14e-3, 1e-3, "change 3.1e-3 \u2192 1.0e-3"), (0.25, 1e-4, "change 2.5e-1 \u2192 1.0e-4"),
+    (float("inf"), 1e-3, None)])
+def test_convergence_text(addon, change, tolerance, text):
+    assert addon.progress.convergence_text(change, tolerance) == text
+
+
+def test_the_pin_hint_shows_only_where_a_run_has_a_pin_group(addon):
+    obj = helpers.suzanne(levels=0)
+    helpers.add_slot(obj, 'CUBE')
+    run = addon.operators.OBJECT_OT_gauss_stylize.key_hints
+    live = helpers.live_run([obj])
+    try:
+        holder = type("Run", (), {"live": live})()
+        assert addon.operators.PIN_HINT not in run(holder)
+        helpers.add_group(obj, "Pins", range(10))
+        obj.gauss_stylization.pin_group = "Pins"
+        assert addon.operators.PIN_HINT in run(holder)
+    finally:
+        live.cancel()
+
+
+@pytest.mark.parametrize("euler, words", [
+    ((0, 0, 0), "not turned"),
+    ((90, 0, 0), "90.0 degrees about +X: the style's axes X along +X, Y along +Z, Z along -Y"),
+    ((0, 0, -90), "90.0 degrees about -Z: the style's axes X along -Y, Y along +X, Z along +Z"),
+    ((0, 30, 0), "30.0 degrees about +Y: the style's axes X along (0.87, 0.00, -0.50), Y along +Y, "
+                 "Z along (0.50, 0.00, 0.87)"),
+])
+def test_auto_orient_says_the_rotation_in_words(addon, euler, words):
+    from mathutils import Euler
+    matrix = np.array(Euler(np.radians(euler), 'XYZ').to_matrix())
+    assert addon.orientation.rotation_in_words(matrix).startswith(words)
+
+
+def test_the_sphere_labels_the_object_axes_at_its_rim(addon):
+    where = addon.gauss_sphere.Frame(100.0, 100.0, 50.0)
+    reach = addon.gauss_sphere.AXIS_LABEL_REACH * 50.0
+    # Seen from the front (-Y towards the viewer): X right, Z up, Y away from the viewer.
+    front = np.array([[1, 0, 0], [0, 0, 1], [0, -1, 0]], float)
+    labels = {name: (x, y, facing) for name, x, y, facing in addon.gauss_sphere.axis_labels(front, where)}
+    assert labels["X"] == pytest.approx((100 + reach, 100, True))
+    assert labels["Z"] == pytest.approx((100, 100 + reach, True))
+    assert labels["Y"][:2] == pytest.approx((100, 100)) and labels["Y"][2] is False
