@@ -23,6 +23,7 @@ not depend on the other frames, so ranges can be baked apart and give the same f
 """
 
 import os
+import tempfile
 
 import bpy
 
@@ -31,16 +32,37 @@ from .errors import SettingsError
 from .session import Plan, Session
 from .settings_io import to_dict
 
-DEFAULT_PATH = "//%s_gauss.pc2"  # % the object's name made file-safe
+DEFAULT_NAME = "%s_gauss.pc2"  # % the object's name made file-safe
+DEFAULT_PATH = "//" + DEFAULT_NAME  # next to the .blend file
+
+
+def temporary_folder():
+    """Where a bake of an unsaved file goes by default: Blender's Temporary Files folder
+    (Preferences > File Paths), else the system's. Not Blender's session folder, which is
+    deleted when Blender quits while the modifier still plays the file."""
+    folder = bpy.context.preferences.filepaths.temporary_directory
+    return bpy.path.abspath(folder) if folder and os.path.isdir(bpy.path.abspath(folder)) else tempfile.gettempdir()
+
+
+def blend_saved():
+    return bool(bpy.data.filepath)
+
+
+def default_path(obj):
+    """The cache file of ``obj`` when the artist gives none: next to the .blend file, or in the
+    temporary folder while the .blend file is not saved."""
+    if blend_saved():
+        return DEFAULT_PATH % bpy.path.clean_name(obj.name)
+    return os.path.join(temporary_folder(), DEFAULT_NAME % bpy.path.clean_name(obj.name))
 
 
 def resolve_path(filepath, obj):
     """(path as the modifier keeps it, absolute path) for the operator's ``filepath``
-    ('' = DEFAULT_PATH). Relative paths ('//') need a saved .blend file."""
-    filepath = filepath or DEFAULT_PATH % bpy.path.clean_name(obj.name)
-    if filepath.startswith("//") and not bpy.data.filepath:
-        raise SettingsError("Save the .blend file first: the cache path '%s' is relative to it "
-                            "(or give an absolute path)" % filepath)
+    ('' = default_path). Relative paths ('//') the artist gives need a saved .blend file."""
+    filepath = filepath or default_path(obj)
+    if filepath.startswith("//") and not blend_saved():
+        raise SettingsError("Save the .blend file first: the Cache File '%s' is relative to it "
+                            "(or clear Cache File to bake to %s)" % (filepath, temporary_folder()))
     absolute = os.path.abspath(bpy.path.abspath(filepath))
     if os.path.isdir(absolute):
         raise SettingsError("The cache path '%s' is a folder; give a file name" % filepath)

@@ -12,7 +12,7 @@ it first.
 import time
 
 import bpy
-from bpy.props import BoolProperty, IntProperty, StringProperty
+from bpy.props import IntProperty, StringProperty
 
 from . import bake, runs, schema
 from .errors import NativeModuleError, SettingsError
@@ -23,11 +23,11 @@ from .targets import stylize_problem
 from .validation import object_problem, poll_result
 
 TICK_BUDGET = 0.1  # seconds of baking per tick (at least one frame), so the UI stays responsive
-FRAME_LIMIT = 1048574  # Blender's MAXFRAME: frames range over +-this
+FRAME_LIMIT = schema.MAX_FRAME
 _STEPS = schema.field(schema.OBJECT, "iterations")
 
 _FILEPATH_TOOLTIP = ("The .pc2 file to write (relative paths start with // and need a saved .blend); "
-                     "empty: %s" % (bake.DEFAULT_PATH % "<object>"))
+                     "empty: the object's Cache File (Bake panel)")
 
 
 def _frame_prop(name, tooltip, default=1):
@@ -188,16 +188,28 @@ class OBJECT_OT_gauss_bake_animation(_BakeOperator, bpy.types.Operator):
     frame_start: _frame_prop("Start Frame", "First frame to bake (default: the scene's start)")
     frame_end: _frame_prop("End Frame", "Last frame to bake (default: the scene's end)")
     filepath: StringProperty(name="File Path", description=_FILEPATH_TOOLTIP, subtype='FILE_PATH')
-    warm_start: BoolProperty(
-        name="Warm Start", default=True,
-        description="Start each frame from the previous frame's result (steady style, no flicker). Off: every "
-                    "frame is stylized on its own, so frame ranges baked apart (render farm) give the same frames")
+    warm_start: schema.field(schema.OBJECT, "bake_warm_start").prop({})  # unset: the object's setting
+
+def bake_range(scene, settings):
+    """(first, last) frame Bake Animation bakes by default: the scene's range or the object's own."""
+    if settings.bake_scene_range:
+        return scene.frame_start, scene.frame_end
+    return settings.bake_frame_start, settings.bake_frame_end
+
 
     def fill_defaults(self, context):
-        if not self.properties.is_property_set("frame_start"):
-            self.frame_start = context.scene.frame_start
-        if not self.properties.is_property_set("frame_end"):
-            self.frame_end = context.scene.frame_end
+        """What the caller did not give comes from the Bake panel's settings."""
+        settings = context.active_object.gauss_stylization
+        start, end = bake_range(context.scene, settings)
+        given = self.properties.is_property_set
+        if not given("frame_start"):
+            self.frame_start = start
+        if not given("frame_end"):
+            self.frame_end = end
+        if not given("warm_start"):
+            self.warm_start = settings.bake_warm_start
+        if not given("filepath"):
+            self.filepath = settings.bake_filepath
 
     def make_bake(self, context):
         self.fill_defaults(context)
@@ -223,3 +235,8 @@ class OBJECT_OT_gauss_bake_progress(_BakeOperator, bpy.types.Operator):
 
 
 classes = (OBJECT_OT_gauss_bake_animation, OBJECT_OT_gauss_bake_progress)
+    def fill_defaults(self, context):
+        if not self.properties.is_property_set("filepath"):
+            self.filepath = context.active_object.gauss_stylization.bake_filepath
+
+        self.fill_defaults(context)

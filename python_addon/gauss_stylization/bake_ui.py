@@ -2,11 +2,11 @@
 
 import bpy
 
-from . import cache_modifier, schema
+from . import bake, bake_operators, cache_modifier, schema
 from .fields import Panel
 # The sidebar's own sub-panel mix-in and row drawing, so this panel looks and behaves like the others.
 from .ui import _GaussSubPanel as GaussSubPanel, _draw_rows as draw_rows, _mesh_object as mesh_object, \
-    _split_column as split_column
+    _split_column as split_column, wrapped_label
 
 
 class VIEW3D_PT_gauss_bake(GaussSubPanel, bpy.types.Panel):
@@ -15,14 +15,24 @@ class VIEW3D_PT_gauss_bake(GaussSubPanel, bpy.types.Panel):
 
     def draw(self, context):
         obj = mesh_object(context)
+        settings = obj.gauss_stylization
         layout = self.layout
-        draw_rows(split_column(layout), obj, obj.gauss_stylization, schema.OBJECT, Panel.BAKE)
+        draw_rows(split_column(layout), obj, settings, schema.OBJECT, Panel.BAKE)
+        if settings.bake_scene_range:
+            wrapped_label(layout, "Frames %d to %d (the scene's)" % bake_operators.bake_range(context.scene, settings),
+                          'TIME')
+        if not settings.bake_filepath:
+            where = bake.default_path(obj)
+            wrapped_label(layout, "Writes %s" % where, 'FILE_CACHE')
+            if not bake.blend_saved():
+                wrapped_label(layout, "The .blend file is not saved, so the cache goes to the temporary folder; "
+                              "pick a Cache File to keep it elsewhere", 'INFO')
         col = layout.column(align=True)
         col.operator("object.gauss_bake_animation", icon='RENDER_ANIMATION')
         col.operator("object.gauss_bake_progress", icon='SEQUENCE')
         modifier = cache_modifier.find(obj)
         if modifier is not None:
-            layout.label(text="Plays %s" % modifier.filepath, icon='FILE_CACHE')
+            wrapped_label(layout, "%s plays %s" % (modifier.name, modifier.filepath), 'MODIFIER')
 
 
 classes = (VIEW3D_PT_gauss_bake,)

@@ -15,12 +15,17 @@ vertices, so it goes first and the other modifiers apply on top.
 
 import bpy
 
-NAME = "Gauss Stylized Cache"
+NAME = "Gauss Bake"
+OLD_NAMES = ("Gauss Stylized Cache",)  # what files saved by earlier versions call it
 
 
 def find(obj):
-    modifier = obj.modifiers.get(NAME)
-    return modifier if modifier is not None and modifier.type == 'MESH_CACHE' else None
+    """The object's cache modifier (by its name, or a name earlier versions gave it), or None."""
+    for name in (NAME,) + OLD_NAMES:
+        modifier = obj.modifiers.get(name)
+        if modifier is not None and modifier.type == 'MESH_CACHE':
+            return modifier
+    return None
 
 
 class Suspended:
@@ -54,6 +59,7 @@ def attach(obj, filepath, frame_start, last):
     modifier = find(obj)
     if modifier is None:
         modifier = obj.modifiers.new(NAME, 'MESH_CACHE')
+    modifier.name = NAME  # one saved by an earlier version takes today's name when it is baked again
     modifier.cache_format = 'PC2'
     modifier.filepath = filepath
     modifier.deform_mode = 'OVERWRITE'

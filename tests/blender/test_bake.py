@@ -221,7 +221,7 @@ def test_a_failed_bake_leaves_nothing(addon, tmp_path):
     (lambda path: bpy.ops.object.gauss_bake_progress(steps=10, steps_per_frame=3, filepath=path), "multiple"),
     (lambda path: bpy.ops.object.gauss_bake_animation(filepath=os.path.dirname(path)), "is a folder"),
     (lambda path: bpy.ops.object.gauss_bake_animation(filepath="/proc/no/x.pc2"), "cannot make the folder"),
-    (lambda path: bpy.ops.object.gauss_bake_animation(), "Save the .blend file first"),
+    (lambda path: bpy.ops.object.gauss_bake_animation(filepath="//x.pc2"), "Save the .blend file first"),
 ])
 def test_bad_bake_requests_are_refused_with_a_message(addon, tmp_path, call, message):
     obj = rig.bent_capsule()
@@ -281,15 +281,61 @@ class _Recorder:
         return self
 
 
-def test_the_bake_panel_offers_bake_steps_and_both_bakes(addon, tmp_path):
-    obj = rig.bent_capsule()
+def _bake_panel_rows(addon):
     rows = []
     addon.bake_ui.VIEW3D_PT_gauss_bake.draw(type("Panel", (), {"layout": _Recorder(rows)})(), bpy.context)
-    assert rows == ["bake_steps", "object.gauss_bake_animation", "object.gauss_bake_progress"]
+    return rows
+
+
+def test_the_bake_panel_offers_its_settings_and_both_bakes(addon, tmp_path):
+    obj = rig.bent_capsule()
+    rows = _bake_panel_rows(addon)
+    assert [row for row in rows if not row.startswith("label")] == [
+        "bake_steps", "bake_warm_start", "bake_scene_range", "bake_filepath",
+        "object.gauss_bake_animation", "object.gauss_bake_progress"]
+    assert "label: Frames 1 to 10 (the scene's)" in rows
+    obj.gauss_stylization.bake_scene_range = False
+    assert ["bake_frame_start", "bake_frame_end"] == [row for row in _bake_panel_rows(addon) if "frame" in row]
     assert _bake_animation(tmp_path / "c.pc2") == {'FINISHED'}
-    rows.clear()
-    addon.bake_ui.VIEW3D_PT_gauss_bake.draw(type("Panel", (), {"layout": _Recorder(rows)})(), bpy.context)
-    assert rows[-1] == "label: Plays %s" % (tmp_path / "c.pc2") and obj.modifiers[-1].type == 'MESH_CACHE'
+    said = " ".join(row[len("label: "):] for row in _bake_panel_rows(addon) if row.startswith("label: "))
+    assert "Gauss Bake plays %s" % (tmp_path / "c.pc2") in said and obj.modifiers[-1].type == 'MESH_CACHE'
+
+
+def test_the_bake_panel_settings_are_what_bake_animation_uses(addon, tmp_path):
+    obj = rig.bent_capsule(frames=(1, 40))
+    settings = obj.gauss_stylization
+    settings.bake_scene_range = False
+    settings.bake_frame_start, settings.bake_frame_end = 3, 6
+    settings.bake_filepath = str(tmp_path / "from_panel.pc2")
+    settings.bake_steps = 2
+    assert bpy.ops.object.gauss_bake_animation() == {'FINISHED'}
+    cache = addon.pc2.read(str(tmp_path / "from_panel.pc2"))
+    assert cache.frames.shape[0] == 4 and cache.start == 3
+
+
+def test_an_unsaved_file_bakes_to_the_temporary_folder(addon, tmp_path, monkeypatch):
+    monkeypatch.setattr(addon.bake, "blend_saved", lambda: False)  # other tests saved this session's file
+    filepaths = bpy.context.preferences.filepaths
+    previous = filepaths.temporary_directory
+    filepaths.temporary_directory = str(tmp_path)
+    try:
+        obj = rig.bent_capsule(frames=(1, 3))
+        bpy.context.scene.frame_start, bpy.context.scene.frame_end = 1, 3
+        assert "label: Writes %s" % (tmp_path / "Capsule_gauss.pc2") in _bake_panel_rows(addon)
+        assert bpy.ops.object.gauss_bake_animation() == {'FINISHED'}
+        assert addon.cache_modifier.find(obj).filepath == str(tmp_path / "Capsule_gauss.pc2")
+        assert "Capsule_gauss.pc2" in _folder_listing(tmp_path)  # (beside the session folder Blender made there)
+    finally:
+        filepaths.temporary_directory = previous
+
+
+def test_a_cache_modifier_saved_under_the_old_name_is_found_and_renamed(addon, tmp_path):
+    obj = rig.bent_capsule()
+    old = obj.modifiers.new(addon.cache_modifier.OLD_NAMES[0], 'MESH_CACHE')
+    assert addon.cache_modifier.find(obj) == old
+    assert _bake_animation(tmp_path / "c.pc2") == {'FINISHED'}
+    caches = [m for m in obj.modifiers if m.type == 'MESH_CACHE']
+    assert len(caches) == 1 and caches[0].name == addon.cache_modifier.NAME == "Gauss Bake"
 
 
 def test_the_object_deleted_mid_bake_ends_it_leaving_nothing(addon, tmp_path):
