@@ -8,8 +8,8 @@ build="${1:-build}"
 tools_venv="$(bash scripts/install_deps.sh --print-tools-venv | tail -n1)"
 pybind11_dir="$("$tools_venv/bin/python" -m pybind11 --cmakedir)"
 if [ ! -f "$build/CMakeCache.txt" ]; then
-  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGAUSS_BUILD_TESTS=ON -Dpybind11_DIR="$pybind11_dir"
+  cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DGAUSS_BUILD_TESTS=ON -Dpybind11_DIR:PATH="$pybind11_dir"
 elif ! grep -qxF "pybind11_DIR:PATH=$pybind11_dir" "$build/CMakeCache.txt"; then
-  cmake "$build" -Dpybind11_DIR="$pybind11_dir"  # a tree configured with another pybind11
+  cmake "$build" -Dpybind11_DIR:PATH="$pybind11_dir"  # a tree configured with another pybind11
 fi
 cmake --build "$build" -j"$(nproc)"

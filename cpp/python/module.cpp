@@ -23,6 +23,7 @@
 #include "gauss/settings.h"
 #include "module_facts.h"
 #include "iteration_bindings.h"
+#include "numpy_abi_guard.h"
 #include "numpy_arrays.h"
 
 namespace py = pybind11;
@@ -172,6 +173,8 @@ class Solver {
     }
     if (!(out.flags() & py::array::c_style) || !out.writeable())
       throw py::value_error("out must be a writeable C-contiguous array");
+    if (out.itemsize() <= 0)  // never divide by it: a numpy this pybind11 misreads shows 0 here
+      throw py::value_error("out has an item size of " + std::to_string(out.itemsize()) + " bytes");
     if (reinterpret_cast<std::uintptr_t>(out.data()) % static_cast<std::uintptr_t>(out.itemsize()) != 0)
       throw py::value_error("out must be an aligned array (its data pointer is not a multiple of its item size)");
     std::lock_guard<std::mutex> lock(mutex_);
@@ -210,6 +213,7 @@ class Solver {
 }  // namespace
 
 PYBIND11_MODULE(gauss_core, m) {
+  gauss_python::refuse_unreadable_numpy();  // first: nothing may read an array it cannot read
   m.doc() = "Gauss stylization (Kohlbrenner et al. 2021): ARAP with preferred face normals.";
 
   gauss_python::export_facts(m);
