@@ -9,6 +9,7 @@
 #include "gauss/parallel.h"
 #include "gauss/supernodal_analysis.h"
 #include "gauss/supernodal_factor.h"
+#include "gauss/system_memory.h"
 
 namespace gauss {
 namespace {

@@ -9,7 +9,7 @@
 #include <thread>
 #include <vector>
 
-#if defined(__x86_64__) || defined(__i386__)
+#if defined(__x86_64__) || defined(__i386__) || defined(_M_X64) || defined(_M_IX86)  // GCC/Clang, MSVC
 #include <immintrin.h>
 #define GAUSS_CPU_RELAX() _mm_pause()
 #else

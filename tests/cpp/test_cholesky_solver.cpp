@@ -16,6 +16,7 @@
 #include "gauss/memory_budget.h"
 #include "gauss/mesh_topology.h"
 #include "gauss/parallel.h"
+#include "scoped_env.h"
 #include "test_meshes.h"
 
 namespace {
@@ -111,24 +112,6 @@ void expect_matches_eigen(const SpMat& A_lower, const gauss::CholeskySolver& s, 
   }
 }
 
-// Sets an environment variable for the lifetime of the object.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, const char* value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old, had_ = true;
-    setenv(name, value, 1);
-  }
-  ~ScopedEnv() {
-    if (had_) setenv(name_, old_.c_str(), 1);
-    else unsetenv(name_);
-  }
-
- private:
-  const char* name_;
-  std::string old_;
-  bool had_ = false;
-};
-
 }  // namespace
 
 TEST(CholeskySolver, RandomSpdSystemsMatchSimplicialLDLT) {
@@ -212,7 +195,7 @@ TEST(CholeskySolver, TooBigForTheMemoryBudgetIsRefusedAndKeepsThePreviousFactor)
   gauss::CholeskySolver s;
   s.factor(small);
   {
-    const ScopedEnv budget("GAUSS_MEMORY_BUDGET_MB", "1");
+    const gauss_test::ScopedEnv budget("GAUSS_MEMORY_BUDGET_MB", "1");
     EXPECT_EQ(gauss::available_memory_bytes(), 1 << 20);
     try {
       s.factor(large);
