@@ -11,7 +11,7 @@
 # manylinux_2_28 (glibc 2.28, what official Blender builds target).
 #
 # Repeat runs are incremental: build-wheel-cpXY/ (ignored by git) keeps a venv of PYTHON_EXE with the build
-# requirements pinned in pyproject.toml (remade when a pin changes) and the CMake build tree.
+# requirements pinned in pyproject.toml (remade when a pin changes) and a CMake build tree, per interpreter.
 set -euo pipefail
 if [ $# -ne 2 ]; then sed -n '5,6p' "$0" | sed 's/^# *//' >&2; exit 2; fi
 python_exe="$1"
@@ -23,12 +23,16 @@ tag="$("$python_exe" -c 'import sys; print("cp%d%d" % sys.version_info[:2])')" \
   || { echo "build_wheel.sh: cannot run $python_exe" >&2; exit 2; }
 tools_venv="$(bash scripts/install_deps.sh --print-tools-venv | tail -n1)"
 work="$repo/build-wheel-$tag"
-build_venv="$work/venv"
+# One build venv and CMake tree per interpreter (Debian's and pyenv's 3.11 both make cp311 wheels; sharing
+# a tree would rebuild it whenever the other one was used last).
+real_python="$(readlink -f "$("$python_exe" -c 'import sys; print(sys.executable)')")"
+interpreter_id="$(printf '%s' "$real_python" | sha1sum | cut -c1-8)"
+build_venv="$work/venv-$interpreter_id"
 requires="$("$tools_venv/bin/python" -c '
 import tomllib
 print("\n".join(tomllib.load(open("pyproject.toml", "rb"))["build-system"]["requires"]))')"
 if [ "$(cat "$build_venv/requires.txt" 2>/dev/null)" != "$requires" ] \
-    || [ "$(readlink -f "$build_venv/bin/python")" != "$(readlink -f "$("$python_exe" -c 'import sys; print(sys.executable)')")" ]; then
+    || [ "$(readlink -f "$build_venv/bin/python")" != "$real_python" ]; then
   echo "== build venv for $tag: $build_venv" >&2
   rm -rf "$build_venv"
   "$python_exe" -m venv "$build_venv"
@@ -41,7 +45,7 @@ fi
 raw="$work/raw"
 rm -rf "$raw" && mkdir -p "$raw"
 CMAKE_BUILD_PARALLEL_LEVEL="${CMAKE_BUILD_PARALLEL_LEVEL:-2}" "$build_venv/bin/python" -m pip wheel -q --disable-pip-version-check --no-build-isolation --no-deps \
-  --config-settings=build-dir="$work/cmake" --config-settings=cmake.build-type=Release \
+  --config-settings=build-dir="$work/cmake-$interpreter_id" --config-settings=cmake.build-type=Release \
   -w "$raw" "$repo" >&2
 built=("$raw"/gauss_core-*.whl)
 if [ ${#built[@]} -ne 1 ] || [ ! -f "${built[0]}" ]; then

@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev python3-dev python3-numpy python3-pytest python3-venv python3-pip libgtest-dev
   pybind11-dev  # 2.10: only for tests/python/test_numpy_mismatch.py; builds use PyPI's (pinned) pybind11
   blender xvfb xauth
+  shellcheck  # actionlint checks the release workflow's run: scripts with it
   clang libclang-rt-14-dev
 )
 missing=()
