@@ -46,7 +46,6 @@ import tomllib
 import zipfile
 
 import blender_ext_tool  # scripts/blender_ext_tool.py: Blender's own extension build/validate tool
-import module_reach  # scripts/module_reach.py: what a locally built module needs from the system
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SOURCE = os.path.join(REPO, "python_addon", "gauss_stylization")
@@ -133,19 +132,6 @@ def native_module(build_dir):
         fail("built for %s; only Linux x86-64 build trees are packaged (other platforms: --wheels)"
              % match["platform"])
     return found[0], python, "cp%s%s-linux_x86_64" % (match["major"], match["minor"])
-
-
-def module_glibc(so_path):
-    """The oldest glibc the module loads on, e.g. "2.17", as readelf shows it (scripts/module_reach.py);
-    warns about anything beyond the allowance the README documents."""
-    try:
-        newest = module_reach.newest_glibc(so_path)
-        beyond = module_reach.problems(so_path)
-    except RuntimeError as exc:
-        fail("cannot inspect %s: %s" % (so_path, exc))
-    for line in beyond:
-        print("package_addon.py: warning: the module %s; the zips' README.txt names what it needs" % line)
-    return ".".join(map(str, newest)) if newest else "(any version)"
 
 
 def facts_file(build_dir):
@@ -431,9 +417,9 @@ def main():
         so_path, python, tag = native_module(build_dir)
         classic_range, _ = blender_ranges(python, addon_min)
         so_name = os.path.basename(so_path)
-        module_line = ("Solver module: %s, built for Python %s, Linux x86-64.\n"
-                       "It needs glibc %s or newer and no other system library."
-                       % (so_name, python, module_glibc(so_path)))
+        module_line = ("Solver module: %s, built for Python %s, Linux x86-64, on the machine that made "
+                       "this zip (a local build: the zips made from wheels, whose glibc auditwheel checks, "
+                       "name the glibc they need)." % (so_name, python))
         to_verify = write_classic(out_dir, version, tag, python, classic_range, addon_min,
                                   [(so_name, read(so_path)), ("core_facts.json", read(facts))], module_line)
         this_python = python
