@@ -155,7 +155,11 @@ def _text(text, x, y, colour, centred=False):
         width, height = blf.dimensions(font, text)
         x, y = x - width / 2.0, y - height / 2.0
     blf.position(font, x, y, 0.0)
+    blf.enable(font, blf.SHADOW)  # readable over the heat map and over a light grid alike
+    blf.shadow(font, 3, 0.0, 0.0, 0.0, 0.9)
+    blf.shadow_offset(font, 1, -1)
     blf.draw(font, text)
+    blf.disable(font, blf.SHADOW)
 
 
 def _label(where, text):

@@ -25,15 +25,16 @@ class GAUSS_UL_styles(bpy.types.UIList):
 
 
 class GAUSS_UL_normals(bpy.types.UIList):
-    """Custom normals, one row each: its number, then X Y Z (the active one is highlighted on the
-    Gauss sphere)."""
+    """Custom normals, one row each: its number, then X Y Z to two decimals (number fields would be
+    too narrow to read in the sidebar). The active one is edited under the list and highlighted on
+    the Gauss sphere."""
 
     def draw_item(self, context, layout, data, item, icon, active_data, active_propname, index):
         split = layout.split(factor=0.16)
         split.label(text="%d" % (index + 1))
         row = split.row(align=True)
-        for axis in range(3):
-            row.prop(item, "vector", index=axis, text="")
+        for value in item.vector:
+            row.label(text="%.2f" % value)
 
 
 def _mesh_object(context):
@@ -154,10 +155,13 @@ def _draw_vertex_group(layout, obj, owner, field):
 def _draw_custom_normals(layout, _obj, slot, field):
     layout.label(text=field.label)
     row = layout.row()
-    row.template_list("GAUSS_UL_normals", "", slot, "custom_normals", slot, "active_normal_index", rows=3)
+    row.template_list("GAUSS_UL_normals", "", slot, "custom_normals", slot, "active_normal_index", rows=5)
     buttons = row.column(align=True)
     buttons.operator("object.gauss_normal_add", icon='ADD', text="")
     buttons.operator("object.gauss_normal_remove", icon='REMOVE', text="")
+    index = slot.active_normal_index
+    if 0 <= index < len(slot.custom_normals):
+        layout.prop(slot.custom_normals[index], "vector", text="#%d" % (index + 1))  # short: Blender adds " X"
     layout.operator("object.gauss_normals_from_faces", icon='FACESEL')
     if not slot.custom_normals:
         wrapped_label(layout, "Add at least one normal", 'ERROR')
@@ -175,19 +179,21 @@ class VIEW3D_PT_gauss_solver(_GaussSubPanel, bpy.types.Panel):
 _WIDGETS = {"prop": _draw_prop, "vertex_group": _draw_vertex_group, "normals": _draw_custom_normals}
 
 
-# What a label row loses to the panel's margins and its icon, in Blender's UI units (20 px at
-# scale 1), and the font size of labels; measured on Blender 3.4's sidebar.
-LABEL_MARGIN_UNITS = 2.6
+# What a label row loses to the panel's margins, a box, its icon and the sidebar's tab strip, in
+# Blender's UI units (20 px at scale 1), and the font size of labels; measured on Blender 3.4's sidebar.
+LABEL_MARGIN_UNITS = 5.0
+DEFAULT_SIDEBAR_PX = 220.0  # Blender's default sidebar width at scale 1 (UI_SIDEBAR_PANEL_WIDTH)
 LABEL_POINTS = 11.0
 
 
 def label_width(context=None):
-    """Pixels a label's text has in a sidebar panel row (the region's width less margins and icon)."""
+    """Pixels a label's text has in a sidebar panel row: the sidebar's width (Blender's default
+    where there is none, as in background mode) less margins, icon and tab strip."""
     context = context or bpy.context
     region = context.region
     scale = context.preferences.system.ui_scale
-    width = region.width if region is not None and region.type == 'UI' else 0
-    return max(width - LABEL_MARGIN_UNITS * 20.0 * scale, 8 * 20.0 * scale)  # narrower: Blender clips anyway
+    width = region.width if region is not None and region.type == 'UI' else DEFAULT_SIDEBAR_PX * scale
+    return max(width - LABEL_MARGIN_UNITS * 20.0 * scale, 2 * 20.0 * scale)  # never so narrow nothing fits
 
 
 def text_width(text, context=None):
@@ -197,16 +203,35 @@ def text_width(text, context=None):
     return blf.dimensions(0, text)[0]
 
 
+def _pieces(word, width, measure):
+    """A word wider than ``width`` (a file path) in pieces that fit, cut after a '/' or '\\'
+    where one is near, else wherever it must be."""
+    pieces = []
+    while measure(word) > width and len(word) > 1:
+        cut = len(word) - 1
+        while cut > 1 and measure(word[:cut]) > width:
+            cut -= 1
+        separator = max(word.rfind("/", 0, cut), word.rfind("\\", 0, cut))
+        cut = separator + 1 if separator >= cut // 2 else cut
+        pieces.append(word[:cut])
+        word = word[cut:]
+    return pieces + [word]
+
+
 def wrap_text(text, width, measure):
-    """``text`` in lines no wider than ``width`` (by ``measure``), broken between words (a single
-    word wider than that stands on its own line)."""
+    """``text`` in lines no wider than ``width`` (by ``measure``), broken between words; a word
+    wider than a line (a file path) is cut into pieces that fit."""
     lines, line = [], ""
     for word in text.split():
-        candidate = (line + " " + word).strip()
+        first, *rest = _pieces(word, width, measure)
+        candidate = (line + " " + first).strip()
         if line and measure(candidate) > width:
             lines.append(line)
-            candidate = word
+            candidate = first
         line = candidate
+        for piece in rest:  # the pieces of a cut word each fill a line
+            lines.append(line)
+            line = piece
     return lines + [line] if line else lines
 
 

@@ -7,52 +7,7 @@ import numpy as np
 import pytest
 
 import helpers
-
-
-class Layout:
-    """A stand-in for a panel's layout: records labels, props and operators in drawing order
-    (``rows``, shared by every nested column, row, box and split)."""
-
-    def __init__(self, rows=None):
-        self.rows = [] if rows is None else rows
-
-    def label(self, text="", icon='NONE', **_options):
-        self.rows.append(("label", text, icon))
-
-    def prop(self, owner, name, text=None, index=-1, **_options):
-        self.rows.append(("prop", name, text, index))
-
-    def prop_search(self, owner, name, *_args, text=None, **_options):
-        self.rows.append(("prop", name, text, -1))
-
-    def operator(self, idname, **_options):
-        self.rows.append(("operator", idname))
-        return type("Properties", (), {})()
-
-    def template_list(self, list_type, *_args, **_options):
-        self.rows.append(("list", list_type))
-
-    def separator(self, **_options):
-        pass
-
-    def _nested(self, *_args, **_options):
-        return Layout(self.rows)
-
-    column = row = box = split = _nested
-
-
-def draw(panel, context=None):
-    layout = Layout()
-    panel.draw(type("Panel", (), {"layout": layout})(), context or bpy.context)
-    return layout.rows
-
-
-def labels(rows):
-    return [row[1] for row in rows if row[0] == "label"]
-
-
-def props(rows):
-    return [row[1] for row in rows if row[0] == "prop"]
+from panel_recorder import Layout, draw, labels, props
 
 
 def _all_panels(addon):
@@ -118,7 +73,10 @@ def test_wrapping_breaks_between_words_and_keeps_every_word(addon):
     text = "Esc: cancel (nothing is written) and more words here"
     lines = wrap(text, 12, len)
     assert " ".join(lines) == text and all(len(line) <= 12 or " " not in line for line in lines)
-    assert wrap("", 10, len) == [] and wrap("averyveryverylongword", 5, len) == ["averyveryverylongword"]
+    assert wrap("", 10, len) == []
+    assert wrap("Writes /tmp/folder/a_long_file_name.pc2", 12, len) == [
+        "Writes", "/tmp/folder/", "a_long_file_", "name.pc2"]
+    assert wrap("a b c", 3, len) == ["a b", "c"]
 
 
 def test_a_custom_normal_is_one_row_with_its_number_and_x_y_z(addon):
@@ -127,7 +85,10 @@ def test_a_custom_normal_is_one_row_with_its_number_and_x_y_z(addon):
     layout = Layout()
     addon.ui.GAUSS_UL_normals.draw_item(None, bpy.context, layout, slot, slot.custom_normals[1], 'NONE',
                                         slot, "active_normal_index", 1)
-    assert layout.rows == [("label", "2", 'NONE')] + [("prop", "vector", "", axis) for axis in range(3)]
+    assert layout.rows == [("label", "2", 'NONE'), ("label", "1.00", 'NONE'), ("label", "0.00", 'NONE'),
+                           ("label", "0.00", 'NONE')]
+    slot.active_normal_index = 1  # ... and is edited under the list
+    assert ("prop", "vector", "#2", -1) in draw(addon.ui.VIEW3D_PT_gauss_styles)
 
 
 def test_the_gauss_sphere_checkbox_shows_before_any_slot_and_stylize_says_what_it_adds(addon):
