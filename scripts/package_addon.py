@@ -2,6 +2,7 @@
 """Package the add-on for installation in Blender.
 
     python3 scripts/package_addon.py BUILD_DIR OUT_DIR [--wheels WHEEL...] [--verify-install]
+    python3 scripts/package_addon.py --table     (the README's table of which Blender gets which zip)
 
 BUILD_DIR is a build tree of scripts/build.sh: it holds core_facts.json (the solver's defaults,
 limits and presets, which the add-on reads when the module cannot load) and the staged module
@@ -375,7 +376,33 @@ def verify_install(zip_path, python):
             fail("install check failed (blender exit code %d)" % result.returncode)
 
 
+def release_table(version, addon_min):
+    """Markdown rows: which Blender gets which zip, derived from BLENDER_FOR_PYTHON and PLATFORMS (for the
+    README; `package_addon.py --table` prints them)."""
+    rows = ["| Blender | Python | numpy | zip (PLATFORM: %s) |" % ", ".join(p.replace("-", "_") for p in PLATFORMS),
+            "| --- | --- | --- | --- |"]
+    for python, row in sorted(BLENDER_FOR_PYTHON.items(), key=lambda item: item[1]["official"], reverse=True):
+        tag = "cp" + python.replace(".", "")
+        classic, extension = blender_ranges(python, addon_min)
+        if extension is not None:
+            rows.append("| %s | %s | %s | `%s-%s-extension-%s-PLATFORM.zip` (extension) |"
+                        % (releases(*extension), python, row["numpy"], PACKAGE, version, tag))
+        last_classic = classic[1] if extension is None else (EXTENSIONS_SINCE[0], EXTENSIONS_SINCE[1] - 1)
+        if last_classic is None or last_classic >= classic[0]:
+            rows.append("| %s | %s | %s | `%s-%s-addon-%s-TAG.zip` (classic add-on; TAG: %s) |"
+                        % (releases(classic[0], last_classic), python, row["numpy"], PACKAGE, version, tag,
+                           ", ".join(PLATFORMS.values())))
+        for also in row["also"]:
+            rows.append("| %s | %s | the system's | `%s-%s-addon-%s-linux_x86_64.zip` (classic add-on) |"
+                        % (also, python, PACKAGE, version, tag))
+    return rows
+
+
 def main():
+    if sys.argv[1:] == ["--table"]:
+        info = addon_info()
+        print("\n".join(release_table(".".join(map(str, info["version"])), tuple(info["blender"][:2]))))
+        return
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("build_dir")
     parser.add_argument("out_dir")
