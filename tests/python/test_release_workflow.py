@@ -1,6 +1,7 @@
 """.github/workflows/release.yml cannot run here: actionlint checks it, and these tests check that it builds
 what the packaging promises (the Pythons and platforms BLENDER_FOR_PYTHON and package_addon.PLATFORMS
 name) by calling the project's own scripts rather than a second copy of the build."""
+import os
 import re
 import subprocess
 import sys
@@ -62,3 +63,17 @@ def test_the_workflow_calls_the_projects_scripts_and_pins():
     assert "grep '^cibuildwheel==' packaging/tools-requirements.txt" in text
     pins = (REPO / "packaging" / "tools-requirements.txt").read_text()
     assert re.search(r"^cibuildwheel==\d+\.\d+\.\d+$", pins, re.M)
+
+
+@pytest.mark.parametrize("platform, identifiers", [
+    ("linux", ["manylinux_x86_64"]), ("windows", ["win_amd64"]), ("macos", ["macosx_x86_64", "macosx_arm64"])])
+def test_cibuildwheel_reads_the_config_as_meant(platform, identifiers):
+    # cibuildwheel itself (the pinned version) resolves pyproject.toml: every Python a Blender runs, on
+    # every platform, and nothing else (requires-python or a skip pattern could drop some silently).
+    result = subprocess.run([str(tools_venv() / "bin" / "cibuildwheel"), "--print-build-identifiers",
+                             "--platform", platform], capture_output=True, text=True, cwd=REPO,
+                            env={k: v for k, v in os.environ.items() if not k.startswith("CIBW_")})
+    assert result.returncode == 0, result.stdout + result.stderr
+    expected = ["cp%s-%s" % (python.replace(".", ""), identifier)
+                for python in package_addon.BLENDER_FOR_PYTHON for identifier in identifiers]
+    assert sorted(result.stdout.split()) == sorted(expected)
