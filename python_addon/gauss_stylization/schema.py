@@ -144,7 +144,7 @@ OBJECT = (
     Float("lam", "Lambda", "How strongly faces follow their style versus keeping their shape",
           soft=(0.0, 20.0), live=Live.SETTER, panel=Panel.SOLVER, relevant=_not_cubic),
     Int("admm_iterations", "ADMM Iterations", "Inner iterations per solver step",
-        live=Live.SETTER, panel=Panel.SOLVER, relevant=_not_cubic),
+        live=Live.SETTER, panel=Panel.SOLVER, text="ADMM Iters", relevant=_not_cubic),
     Float("tolerance", "Tolerance", "A run has converged, and stops, when a step moves the mesh by less than "
           "this fraction of how far it has moved from its original shape", soft=(1e-4, 0.1), live=Live.SETTER,
           panel=Panel.SOLVER),

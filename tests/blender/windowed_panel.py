@@ -337,11 +337,13 @@ def live_run_shows_convergence(name):
 
 def scenario():
     name = d.set_up()
-    # The Bake panel is closed by default; for its screenshot it is registered open before the
-    # sidebar first draws it (the panel itself is the add-on's).
-    bpy.utils.unregister_class(bake_ui.VIEW3D_PT_gauss_bake)
-    bake_ui.VIEW3D_PT_gauss_bake.bl_options = set()
-    bpy.utils.register_class(bake_ui.VIEW3D_PT_gauss_bake)
+    # The Solver and Bake panels are closed by default; for the screenshots they are registered open
+    # before the sidebar first draws them (the panels themselves are the add-on's).
+    for panel in (ui.VIEW3D_PT_gauss_solver, bake_ui.VIEW3D_PT_gauss_bake):
+        bpy.utils.unregister_class(panel)
+        panel.bl_options = set()
+    for panel in (ui.VIEW3D_PT_gauss_solver, bake_ui.VIEW3D_PT_gauss_bake):  # in their order
+        bpy.utils.register_class(panel)
     probes = bracket_the_draw_handlers()
     yield 1.0
     yield from d.open_gauss_tab()
