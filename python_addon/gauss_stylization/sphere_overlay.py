@@ -122,6 +122,10 @@ def draw(context):
                               gauss_sphere.facing(seen, triangles))
     normals = face_normal_sample(obj) @ turn.T
     gpu_compat.draw_points(gauss_sphere.to_pixels(normals[normals[:, 2] > 0], where), NORMAL_POINTS, 2.0)
+    # Under the dots: a preset's preferred normals lie along the axes, and a dot must stay visible.
+    for name, x, y, facing in gauss_sphere.axis_labels(turn, where):
+        colour = AXIS_COLOURS[name] + ((1.0,) if facing else (AXIS_BEHIND_ALPHA,))
+        _text(name, x, y, colour, centred=True)
     dots = preferred @ turn.T
     front, back = dots[dots[:, 2] > 0], dots[dots[:, 2] <= 0]
     gpu_compat.draw_points(gauss_sphere.to_pixels(back, where), DOT_BEHIND, 5.0)
@@ -134,9 +138,6 @@ def draw(context):
         pixel = gauss_sphere.to_pixels(seen[None], where)
         gpu_compat.draw_points(pixel, DOT_EDGE, 13.0)
         gpu_compat.draw_points(pixel, ACTIVE_DOT if seen[2] > 0 else ACTIVE_DOT[:3] + (0.5,), 9.0)
-    for name, x, y, facing in gauss_sphere.axis_labels(turn, where):
-        colour = AXIS_COLOURS[name] + ((1.0,) if facing else (AXIS_BEHIND_ALPHA,))
-        _text(name, x, y, colour, centred=True)
     _label(where, "%s%s" % (slot.name if slot else "Gauss sphere", "  (%s)" % problem if problem else ""))
 
 
