@@ -10,8 +10,9 @@
 # (remade when a pin changes), the wheel of scripts/build_wheel.sh installed into it, then pytest. The
 # packaging tests, which read the main build tree, run in the main suite only (scripts/run_tests.sh);
 # tests/python/test_numpy_mismatch.py runs here, where numpy 2 is.
-# Prints one line per Python: "numpy2 suite, Python 3.11.7, numpy 2.3.5: N passed, 0 failed" (pytest's
-# own summary above it) and exits non-zero if any run fails.
+# Prints one line per Python: "numpy2 suite, Python 3.11.7, numpy 2.3.5: N passed, 0 failed, 0 skipped"
+# (pytest's own summary above it; its log in build-wheel-cpXY/numpy2-pytest.log) and exits non-zero if
+# any run fails.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 repo="$PWD"
@@ -52,8 +53,9 @@ for python_exe in "$@"; do
       2>&1 | tee "$log" | tail -n 3
   status=${PIPESTATUS[0]}
   versions="$("$venv/bin/python" -c 'import platform, numpy; print("Python %s, numpy %s" % (platform.python_version(), numpy.__version__))')"
-  summary="$(tail -n1 "$log" | sed 's/^=* *//; s/ in [0-9.]*s.*$//')"
-  lines+=("numpy2 suite, $versions: $summary")
+  last="$(tail -n1 "$log")"
+  count() { grep -o "[0-9]* $1" <<< "$last" | cut -d' ' -f1 || true; }
+  lines+=("numpy2 suite, $versions: $(count passed | grep . || echo 0) passed, $(( $(count failed | grep . || echo 0) + $(count error | grep . || echo 0) )) failed, $(count skipped | grep . || echo 0) skipped")
   [ "$status" -eq 0 ] || failed=1
 done
 printf '%s\n' "${lines[@]}"
