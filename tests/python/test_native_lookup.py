@@ -5,8 +5,8 @@
 - Extension: the wheel installs gauss_core as a top-level module; the add-on folder holds none.
 Each case runs in a fresh interpreter, with the add-on's native.py and errors.py copied into a package.
 """
-import glob
 import importlib.machinery
+import importlib.util
 import pathlib
 import shutil
 import subprocess
@@ -15,17 +15,17 @@ import textwrap
 
 import pytest
 
-from conftest import BUILD, REPO
+from conftest import REPO
 
 SUFFIX = importlib.machinery.EXTENSION_SUFFIXES[0]
 
 
 @pytest.fixture
 def built_module():
-    found = glob.glob(str(BUILD / "python" / ("gauss_core" + SUFFIX)))
-    if len(found) != 1:
-        pytest.fail("expected the built module in %s/python, found %s: build first" % (BUILD, found))
-    return pathlib.Path(found[0])
+    """The gauss_core these tests import (the build tree's, conftest.py, or the installed wheel's)."""
+    spec = importlib.util.find_spec("gauss_core")
+    assert spec is not None and spec.origin.endswith(SUFFIX), spec
+    return pathlib.Path(spec.origin)
 
 
 def make_addon(root, bundled=None):
