@@ -129,6 +129,17 @@ class _Bake:
             self.writer.discard()
         self._restore()
 
+    def hold(self):
+        """The scene frame and the cache modifier as before the bake, while a file is written."""
+        self.held = (self.scene.frame_current, self.scene.frame_subframe)
+        self.suspended.restore()
+        self.scene.frame_current, self.scene.frame_subframe = self.frame
+
+    def resume(self):
+        """After the file was written: the bake's frame and suspended modifier back."""
+        self.suspended.__enter__()
+        self.scene.frame_current, self.scene.frame_subframe = self.held
+
     def _restore(self):
         self.suspended.restore()
         frame, subframe = self.frame

@@ -169,6 +169,20 @@ class _BakeOperator:
     def cancel(self, context):
         self.stop(context)
 
+    def cancel_keeping_edits(self, context):
+        """Esc's ending (runs.py, on undo): a bake leaves no edits of its own to keep."""
+        self.stop(context)
+        return False
+
+    def hold_for_save(self, context):
+        """Just before a file is written (runs.py): the scene as before the bake."""
+        self._job.hold()
+
+    def resume_after_save(self, context):
+        self._job.resume()
+        self.report({'INFO'}, "Saved %s as before the bake (frame, cache modifier): the bake goes on"
+                    % bpy.path.basename(bpy.data.filepath))
+
     def _end(self, context):
         context.window_manager.event_timer_remove(self._timer)
         self._timer = None

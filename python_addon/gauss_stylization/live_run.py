@@ -46,6 +46,7 @@ class LiveRun:
         self.paused = {}     # session -> why it cannot step now
         self.next = 0        # index of the session the next tick starts with
         self.tick_ms = deque(maxlen=TIMINGS_KEPT)  # ms of the last TIMINGS_KEPT ticks that stepped
+        self.held = False    # hold_for_save() showed the meshes as before the run; resume_after_save() not yet
 
     @property
     def preparing(self):
@@ -80,6 +81,8 @@ class LiveRun:
     def tick(self, budget=TICK_BUDGET):
         """Sync settings and step objects in turn for up to ``budget`` seconds (at least one step)."""
         outcome = TickOutcome()
+        if self.held:  # a save that failed never reached its save_post: put the results back now
+            self.resume_after_save()
         start = time.perf_counter()
         count, first = len(self.sessions), self.next
         stepped = 0
@@ -144,6 +147,23 @@ class LiveRun:
             except ReferenceError:  # deleted during the run: an edit too
                 return True
         return False
+
+    # -- saving -------------------------------------------------------------------
+
+    def hold_for_save(self):
+        """Show every mesh as cancel() would leave it while the file is written: a run is not the
+        artist's until it is kept, so a file saved meanwhile must not hold a half-stylized mesh."""
+        for session in self.sessions:
+            if session.object_alive():
+                session.hold()
+        self.held = True
+
+    def resume_after_save(self):
+        """Put the run's results back after the file was written (the run goes on)."""
+        self.held = False
+        for session in self.sessions:
+            if session.object_alive():
+                session.resume()
 
     # -- ending -------------------------------------------------------------------
 

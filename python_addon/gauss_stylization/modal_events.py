@@ -10,7 +10,7 @@ business) or what modal() returns: {'RUNNING_MODAL'} to take the event,
 {'PASS_THROUGH'} to give it to Blender after all, or the result of
 ``run.end(context, keep)`` when it ends the run. ``run`` is the modal operator:
 
-    run.end(context, keep)  -> {'FINISHED'} / {'CANCELLED'}: keep or restore all objects
+    run.end(context, keep, why=None) -> {'FINISHED'} / {'CANCELLED'}: keep or restore all objects
     run.preparing           -> True while the solvers are still being set up
     run.live.sessions       -> the session.Session of each object in the run
     run.scratch             -> dict for handlers' own state during this run, by handler name
@@ -25,10 +25,11 @@ context, keep)``, if given, is called once when the run ends, however it ends,
 before the meshes are kept or restored.
 """
 
+from .runs import UNDO_CANCELLED
 from .viewport import drag_distance_exceeded, free_viewport_at
 
 DRAGS = 50      # a drag in progress (a pin handle): its Esc puts it back, its Enter drops it
-KEYS = 100      # Enter, Esc, Ctrl+Z, Tab
+KEYS = 100      # Enter, Esc, Ctrl+Z, Ctrl+Shift+Z, Tab
 OVERLAYS = 150  # things drawn over the viewport that take presses (the Gauss sphere), over the pins
 HANDLES = 200   # for things in the viewport that take presses and drags (pin handles)
 CLICKS = 300    # a plain click in the free viewport keeps, a right-click cancels
@@ -69,17 +70,19 @@ def run_ended(run, context, keep):
 # -- the run's own handlers ----------------------------------------------------------------
 
 def keys(run, context, event):
-    """Enter keeps, Esc cancels; no undo and no mode switch under a run. During the
-    set-up only Esc acts (there is nothing to keep yet)."""
+    """Enter keeps, Esc cancels, so do Ctrl+Z and Ctrl+Shift+Z (saying so); no mode switch under
+    a run. During the set-up only Esc and undo act (there is nothing to keep yet)."""
     if event.value != 'PRESS':
         return None
     if event.type == 'ESC':
         return run.end(context, keep=False)
+    if event.type == 'Z' and (event.ctrl or event.oskey):
+        return run.end(context, keep=False, why=UNDO_CANCELLED % ("redo" if event.shift else "undo"))
     if run.preparing:
         return None
     if event.type in {'RET', 'NUMPAD_ENTER'}:
         return run.end(context, keep=True)
-    if event.type == 'TAB' or (event.type == 'Z' and (event.ctrl or event.oskey)):
+    if event.type == 'TAB':
         return {'RUNNING_MODAL'}
     return None
 

@@ -27,6 +27,9 @@ KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel")  # what mo
 PIN_HINT = "Drag a pin: move its handle"  # what handle_tool does, where a run has pins
 SETUP_HINT = "Esc: cancel"
 EDITS_UNDO_NAME = "Edits during Stylize"  # the undo step of what was edited during a cancelled run
+# A file saved during a run holds the meshes as they were before it (what Esc restores).
+SAVED_NOTE = "Saved without this run (Enter keeps it)"
+SAVED_REPORT = "Saved %s with the meshes as before Stylize: the live run goes on, and is saved once kept"
 _STEPS = schema.field(schema.OBJECT, "iterations")
 
 
@@ -90,6 +93,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         # The area's address only, never a Python reference to it: see viewport.existing_area.
         self._area_pointer = context.area.as_pointer() if context.area else None
         self._operator_at_start = _last_registered_operator(context)
+        self._operator_ran = False  # see _operators_ran()
         self._progress = ProgressReport(context, TITLE, status=False)
         self._panels_drawn = 0.0
         window_manager = context.window_manager
@@ -119,6 +123,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
 
     def _tick(self, context):
         live = self.live
+        self._operators_ran(context)
         if live.preparing:
             if not live.setup.done:
                 self._progress.update(live.setup.fraction, live.setup.text())
@@ -147,8 +152,8 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             self.report({'WARNING'}, "Stylize stopped on '%s', its mesh restored: %s" % (session.name, why))
         for name, why in outcome.paused:
             self.report({'WARNING'}, "Stylize paused on '%s': %s" % (name, why))
-        if not live.sessions:
-            self.stop(context, keep=False)
+        if not live.sessions:  # every object deleted: that deletion must be an undo step of its own
+            self.cancel_keeping_edits(context)
             return {'CANCELLED'}
         self._show_busy(context)
         if outcome.stepped or time.monotonic() - self._panels_drawn > PANEL_SECONDS:
@@ -175,9 +180,9 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             self._progress.end()
             self._progress = None
 
-    def end(self, context, keep):
+    def end(self, context, keep, why=None):
         """End the run from an event (see modal_events): keep the results or restore every mesh.
-        Returns what modal() returns."""
+        why: reported when the run is cancelled by something other than Esc. Returns what modal() returns."""
         if keep and not self.live.preparing:
             for name in self.live.drop_gone():  # deleted since the last tick: nothing to keep
                 self.report({'WARNING'}, "Stylize stopped on '%s': the object was deleted or its mesh "
@@ -185,13 +190,39 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             if self.live.sessions:
                 self.stop(context, keep=True)
                 return {'FINISHED'}
-        edited = self.live.edited() or _last_registered_operator(context) != self._operator_at_start
+        self.cancel_keeping_edits(context)
+        if why:
+            self.report({'INFO'}, why)
+        return {'CANCELLED'}
+
+    def cancel_keeping_edits(self, context):
+        """Restore every mesh and end the run as Esc does: what the artist edited meanwhile (settings,
+        moves, deleted objects) stays and becomes one undo step. True if that step was pushed."""
+        edited = self.live.edited() or self._operators_ran(context)
         self.stop(context, keep=False)
         if edited:
             # Undo was off during the run: record what was edited meanwhile as one step
             # (the meshes are back as they were, so no cancelled shape is in it).
             bpy.ops.ed.undo_push(message=EDITS_UNDO_NAME)
-        return {'CANCELLED'}
+        return edited
+
+    def _operators_ran(self, context):
+        """Did an operator the artist ran (a Move, a Delete...) register during the run? Each tick
+        looks, because an undo empties the list before the run hears of it."""
+        last = _last_registered_operator(context)
+        self._operator_ran = self._operator_ran or last not in (self._operator_at_start, None)
+        return self._operator_ran
+
+    def hold_for_save(self, context):
+        """Just before a file is written (runs.py): the meshes as Esc would leave them."""
+        self.live.hold_for_save()
+
+    def resume_after_save(self, context):
+        """After the file was written: the run's results back, and the status bar says what was saved."""
+        self.live.resume_after_save()
+        self.notes["saved"] = SAVED_NOTE
+        self.report({'INFO'}, SAVED_REPORT % bpy.path.basename(bpy.data.filepath))
+        self.show_status(context)
 
     def stop(self, context, keep):
         """End the run: keep the results (callers drop deleted objects first) or restore.

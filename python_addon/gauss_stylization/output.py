@@ -4,6 +4,9 @@ A target is set up before anything changes, then: ``prepare()`` (the first
 change), ``write(coords)`` per step, and ``keep()`` or ``restore()`` at the
 end. ``alive()`` says whether what it writes into still exists; ``rest`` is
 (mesh, coordinates, kind) for Reset (rest_store.capture) once it is kept.
+A file saved during a run holds what ``restore()`` would leave: ``hold()`` shows that
+just before the file is written and ``resume(coords)`` puts the run's result back after
+(coords None: the run has not written one yet).
 
 Each target snapshots exactly what it will overwrite before the first write,
 so cancelling restores the mesh bit for bit (the snapshot is a float32 copy of
@@ -80,6 +83,13 @@ class MeshTarget:
             mesh_io.write_key_coords(key, self.saved_vertices if self.saved_key is None else self.saved_key)
         mesh_io.tag_changed(self.mesh)
 
+    def hold(self):
+        self.restore()
+
+    def resume(self, coords):
+        if coords is not None:
+            self.write(coords)
+
 
 class ShapeKeyTarget:
     """Write into the shape key "Gauss Stylized" (relative to the basis), so the
@@ -150,6 +160,19 @@ class ShapeKeyTarget:
         if self._object_using_mesh() is not None:
             self.obj.active_shape_key_index = self.saved_active
         mesh_io.tag_changed(self.mesh)
+
+    def hold(self):
+        self.restore()
+
+    def resume(self, coords):
+        """The keys restore() removed made again (as prepare() first made them), then the result."""
+        owner = self._object_using_mesh()
+        active = owner.active_shape_key_index if owner is not None else None
+        self.prepare()
+        if coords is not None:
+            self.write(coords)
+        if owner is not None:
+            owner.active_shape_key_index = active
 
     def _object_using_mesh(self):
         try:
@@ -241,6 +264,21 @@ class NewObjectTarget:
                 pass
         self.obj = self.mesh = None
         self._show_original()
+
+    def hold(self):
+        """The new object out of every collection: an object nothing uses is not saved."""
+        self.held_in = list(self.obj.users_collection)
+        for collection in self.held_in:
+            collection.objects.unlink(self.obj)
+        self._show_original()
+
+    def resume(self, coords):
+        for collection in self.held_in:
+            collection.objects.link(self.obj)
+        self.held_in = []
+        self.original.display_type = 'WIRE'
+        if coords is not None:
+            self.write(coords)
 
     def _show_original(self):
         try:

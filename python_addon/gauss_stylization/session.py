@@ -334,6 +334,14 @@ class Session:
         self._stop_pins()
         self.target.restore()
 
+    def hold(self):
+        """Show what cancel() would leave, for a file being saved; the run goes on after resume()."""
+        self.target.hold()
+
+    def resume(self):
+        """After a save: the result of the last step back where hold() took it away."""
+        self.target.resume(self.result if self.steps else None)  # None: nothing written yet
+
     def object_alive(self):
         try:
             return self.obj.data == self.mesh and self.target.alive()

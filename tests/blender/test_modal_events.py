@@ -14,14 +14,16 @@ class _Run:
     def __init__(self):
         self.preparing, self.scratch, self.notes, self.ended = False, {}, {}, []
 
-    def end(self, context, keep):
+    def end(self, context, keep, why=None):
         self.ended.append(keep)
+        self.why = why
         return {'FINISHED'} if keep else {'CANCELLED'}
 
 
 def _event(kind, value='PRESS', **more):
-    return SimpleNamespace(type=kind, value=value, mouse_x=10, mouse_y=10, ctrl=False, oskey=False,
-                           **more)
+    keys = dict(ctrl=False, oskey=False, shift=False)
+    keys.update(more)
+    return SimpleNamespace(type=kind, value=value, mouse_x=10, mouse_y=10, **keys)
 
 
 @pytest.fixture
@@ -37,15 +39,18 @@ def events(addon):
         addon.modal_events.remove(handler)
 
 
-def test_keys_end_the_run_and_block_undo(events):
+def test_keys_end_the_run_and_undo_cancels_it_saying_so(events):
     modal_events, _add = events
     run = _Run()
     assert modal_events.dispatch(run, bpy.context, _event('RET')) == {'FINISHED'}
-    assert modal_events.dispatch(run, bpy.context, _event('ESC')) == {'CANCELLED'}
-    assert modal_events.dispatch(run, bpy.context, SimpleNamespace(**dict(vars(_event('Z')), ctrl=True))) \
-        == {'RUNNING_MODAL'}
+    assert modal_events.dispatch(run, bpy.context, _event('ESC')) == {'CANCELLED'} and run.why is None
+    assert modal_events.dispatch(run, bpy.context, _event('Z', ctrl=True, shift=False)) == {'CANCELLED'}
+    assert "cancelled by undo" in run.why
+    assert modal_events.dispatch(run, bpy.context, _event('Z', ctrl=True, shift=True)) == {'CANCELLED'}
+    assert "cancelled by redo" in run.why
+    assert modal_events.dispatch(run, bpy.context, _event('TAB')) == {'RUNNING_MODAL'}
     assert modal_events.dispatch(run, bpy.context, _event('G')) == {'PASS_THROUGH'}
-    assert run.ended == [True, False]
+    assert run.ended == [True, False, False, False]
 
 
 def test_while_preparing_only_esc_ends_the_run(events):

@@ -32,6 +32,10 @@ class _Run:
         if self.fail:
             raise RuntimeError("restoring failed")
 
+    def cancel_keeping_edits(self, context):
+        self.stop(context, keep=False)
+        return False
+
     def report(self, kind, text):
         self.reports.append(text)
 
@@ -73,7 +77,7 @@ def test_undo_is_off_exactly_while_runs_are_registered(addon, preferences):
     assert preferences.edit.undo_steps == USER_STEPS
 
 
-@pytest.mark.parametrize("handler", ["_end_runs_before_undo", "_end_runs_before_load"])
+@pytest.mark.parametrize("handler", ["_end_runs_before_undo", "_end_runs_before_redo", "_end_runs_before_load"])
 def test_undo_redo_and_loading_end_runs_and_give_undo_back(addon, preferences, handler):
     run = _Run()
     addon.runs.start([helpers.uv_sphere()], run)
