@@ -1,10 +1,11 @@
 #!/bin/sh
-# Drive the live (modal) Stylize operator in a real Blender window under Xvfb, in five parts:
+# Drive the live (modal) Stylize operator in a real Blender window under Xvfb, in six parts:
 #   windowed_driver.py       the basics (keys, clicks, shape keys, deleting things, files)
 #   windowed_live_run.py     undo during runs, the gizmo and other clicks, several objects, messages
 #   windowed_interactive.py  the Gauss sphere overlay and editing on it, pin handles dragged live
 #   windowed_panel.py        the sidebar redrawn by operators, labels that fit it, the sphere's highlight
 #                            and axis labels, the gpu state after draw callbacks, sidebar screenshots
+#   windowed_undo_save.py    undo, Del and saving in the middle of a run or a bake lose nothing
 #   windowed_quit.py         quitting during a run must not save undo steps 0 in the preferences
 #   tests/blender/run_windowed.sh [BUILD_DIR]
 # Prints each part's result and "windowed summary: N passed, M failed"; exits non-zero on any
@@ -48,6 +49,7 @@ driver windowed_driver.py windowed_result.txt
 driver windowed_live_run.py windowed_live_run_result.txt
 driver windowed_interactive.py windowed_interactive_result.txt
 driver windowed_panel.py windowed_panel_result.txt
+driver windowed_undo_save.py windowed_undo_save_result.txt
 
 # Quitting: the preferences live in a folder of their own, never the user's.
 CONFIG=$(mktemp -d)
