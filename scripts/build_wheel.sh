@@ -28,6 +28,9 @@ work="$repo/build-wheel-$tag"
 real_python="$(readlink -f "$("$python_exe" -c 'import sys; print(sys.executable)')")"
 interpreter_id="$(printf '%s' "$real_python" | sha1sum | cut -c1-8)"
 build_venv="$work/venv-$interpreter_id"
+mkdir -p "$work"
+exec 9> "$work/$interpreter_id.lock"
+flock 9  # two builds for one interpreter (e.g. the bpy matrix and the tests) take turns in its tree
 requires="$("$tools_venv/bin/python" -c '
 import tomllib
 print("\n".join(tomllib.load(open("pyproject.toml", "rb"))["build-system"]["requires"]))')"
@@ -42,7 +45,7 @@ if [ "$(cat "$build_venv/requires.txt" 2>/dev/null)" != "$requires" ] \
 fi
 
 # The backend's wheel (tagged linux_x86_64), then auditwheel's check and retag.
-raw="$work/raw"
+raw="$work/raw-$interpreter_id"
 rm -rf "$raw" && mkdir -p "$raw"
 CMAKE_BUILD_PARALLEL_LEVEL="${CMAKE_BUILD_PARALLEL_LEVEL:-2}" "$build_venv/bin/python" -m pip wheel -q --disable-pip-version-check --no-build-isolation --no-deps \
   --config-settings=build-dir="$work/cmake-$interpreter_id" --config-settings=cmake.build-type=Release \

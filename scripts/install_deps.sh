@@ -34,6 +34,9 @@ with open("pyproject.toml", "rb") as handle:
 PY
 )
 $(grep -v '^\s*\(#\|$\)' packaging/tools-requirements.txt)"
+mkdir -p "$(dirname "$tools_venv")"
+exec 9> "$tools_venv.lock"
+flock 9  # builds started at the same time wait for one venv instead of removing each other's
 if [ "$(cat "$tools_venv/pins.txt" 2>/dev/null)" != "$pins" ]; then
   echo "== making the tools venv $tools_venv" >&2
   rm -rf "$tools_venv"
@@ -42,4 +45,5 @@ if [ "$(cat "$tools_venv/pins.txt" 2>/dev/null)" != "$pins" ]; then
   "$tools_venv/bin/python" -m pip install -q --disable-pip-version-check -r "$tools_venv/requirements.txt"
   printf '%s' "$pins" > "$tools_venv/pins.txt"
 fi
+exec 9>&-
 if [ "${1:-}" = "--print-tools-venv" ]; then echo "$tools_venv"; fi
