@@ -193,6 +193,13 @@ class _BakeOperator:
         """Values an artist would expect where the caller gave none (subclasses)."""
 
 
+def bake_range(scene, settings):
+    """(first, last) frame Bake Animation bakes by default: the scene's range or the object's own."""
+    if settings.bake_scene_range:
+        return scene.frame_start, scene.frame_end
+    return settings.bake_frame_start, settings.bake_frame_end
+
+
 class OBJECT_OT_gauss_bake_animation(_BakeOperator, bpy.types.Operator):
     """Stylize every frame of the animation (the mesh as evaluated: modifiers, armature, shape keys) into a
     point cache, played back by a Mesh Cache modifier added at the end of the stack"""
@@ -203,13 +210,6 @@ class OBJECT_OT_gauss_bake_animation(_BakeOperator, bpy.types.Operator):
     frame_end: _frame_prop("End Frame", "Last frame to bake (default: the scene's end)")
     filepath: StringProperty(name="File Path", description=_FILEPATH_TOOLTIP, subtype='FILE_PATH')
     warm_start: schema.field(schema.OBJECT, "bake_warm_start").prop({})  # unset: the object's setting
-
-def bake_range(scene, settings):
-    """(first, last) frame Bake Animation bakes by default: the scene's range or the object's own."""
-    if settings.bake_scene_range:
-        return scene.frame_start, scene.frame_end
-    return settings.bake_frame_start, settings.bake_frame_end
-
 
     def fill_defaults(self, context):
         """What the caller did not give comes from the Bake panel's settings."""
@@ -243,14 +243,14 @@ class OBJECT_OT_gauss_bake_progress(_BakeOperator, bpy.types.Operator):
     frame_start: _frame_prop("Start Frame", "Frame that shows the unstylized mesh (step 0)")
     filepath: StringProperty(name="File Path", description=_FILEPATH_TOOLTIP, subtype='FILE_PATH')
 
+    def fill_defaults(self, context):
+        if not self.properties.is_property_set("filepath"):
+            self.filepath = context.active_object.gauss_stylization.bake_filepath
+
     def make_bake(self, context):
+        self.fill_defaults(context)
         return bake.ProgressBake(context, context.active_object, self.steps, self.steps_per_frame,
                                  self.frame_start, self.filepath)
 
 
 classes = (OBJECT_OT_gauss_bake_animation, OBJECT_OT_gauss_bake_progress)
-    def fill_defaults(self, context):
-        if not self.properties.is_property_set("filepath"):
-            self.filepath = context.active_object.gauss_stylization.bake_filepath
-
-        self.fill_defaults(context)

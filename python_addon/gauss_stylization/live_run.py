@@ -204,6 +204,7 @@ class LiveRun:
         converged = self.converged
         if len(sessions) == 1:
             text = TITLE + ": step %d" % sessions[0].steps
+            towards = convergence_text(sessions[0].reldv, sessions[0].applied["tolerance"])
             if converged:
                 text += "  |  " + CONVERGED
             elif towards:
@@ -226,7 +227,6 @@ class LiveRun:
             busy = session.busy
             if busy is not None:
                 text += "  |  " + ("'%s': " % session.name if len(sessions) > 1 else "") + progress_text(
-            towards = convergence_text(sessions[0].reldv, sessions[0].applied["tolerance"])
                     busy.text(), busy.fraction)
         return text
 
@@ -257,7 +257,7 @@ class LiveRun:
                 lines.append(("%s: converged, step %d" % (session.name, session.steps), 'CHECKMARK'))
             else:
                 lines.append(("%s: step %d" % (session.name, session.steps), 'MESH_DATA'))
-        return lines
                 towards = convergence_text(session.reldv, session.applied["tolerance"])
                 if towards:
                     lines.append((towards, 'BLANK1'))
+        return lines

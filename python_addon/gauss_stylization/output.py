@@ -249,10 +249,16 @@ class NewObjectTarget:
             return False
 
     def keep(self):
+        """The kept result takes the original's place in the view: the original is hidden (as
+        Blender's own convert-to-new-object tools do), the new object selected and active."""
         self._show_original()
         _select(self.original, False)
         if _select(self.obj, True):
             bpy.context.view_layer.objects.active = self.obj
+            try:
+                self.original.hide_set(True)
+            except (RuntimeError, ReferenceError):  # not in this view layer, or deleted during the run
+                pass
 
     def restore(self):
         """Remove what the run created (as far as it still exists) and show the original again."""
@@ -287,19 +293,29 @@ class NewObjectTarget:
             pass
 
 
-        """The kept result takes the original's place in the view: the original is hidden (as
-        Blender's own convert-to-new-object tools do), the new object selected and active."""
 def _select(obj, state):
     """Select or deselect ``obj`` in the current view layer; False if it is not in it."""
     try:
         obj.select_set(state)
-            try:
-                self.original.hide_set(True)
-            except (RuntimeError, ReferenceError):  # not in this view layer, or deleted during the run
-                pass
     except (RuntimeError, ReferenceError):  # not in this view layer (an excluded collection), or deleted
         return False
     return True
+
+
+def refusal_before_run(obj, depsgraph):
+    """What the panel says before Stylize is clicked when the Output cannot take the result: Use
+    Modifiers reads a mesh whose vertex or face count differs from the mesh's (make_target refuses
+    it then, also for differences the counts do not show). None when nothing is known against it."""
+    settings = obj.gauss_stylization
+    if not settings.use_modifiers or settings.output == 'NEW_OBJECT' or not obj.modifiers:
+        return None
+    shown = obj.evaluated_get(depsgraph).data
+    base = obj.data
+    if (len(shown.vertices), len(shown.polygons)) == (len(base.vertices), len(base.polygons)):
+        return None
+    return ("The modifiers change the vertices or faces ({:,} vertices shown, {:,} in the mesh): the result "
+            "cannot go into the {}. Choose Output: New Object, or turn Use Modifiers off").format(
+        len(shown.vertices), len(base.vertices), "shape key" if settings.output == 'SHAPE_KEY' else "mesh")
 
 
 def make_target(obj, source):
@@ -320,19 +336,3 @@ def target_key(obj):
     """The "Gauss Stylized" key of ``obj`` or None."""
     keys = obj.data.shape_keys
     return None if keys is None else keys.key_blocks.get(SHAPE_KEY_NAME)
-def refusal_before_run(obj, depsgraph):
-    """What the panel says before Stylize is clicked when the Output cannot take the result: Use
-    Modifiers reads a mesh whose vertex or face count differs from the mesh's (make_target refuses
-    it then, also for differences the counts do not show). None when nothing is known against it."""
-    settings = obj.gauss_stylization
-    if not settings.use_modifiers or settings.output == 'NEW_OBJECT' or not obj.modifiers:
-        return None
-    shown = obj.evaluated_get(depsgraph).data
-    base = obj.data
-    if (len(shown.vertices), len(shown.polygons)) == (len(base.vertices), len(base.polygons)):
-        return None
-    return ("The modifiers change the vertices or faces ({:,} vertices shown, {:,} in the mesh): the result "
-            "cannot go into the {}. Choose Output: New Object, or turn Use Modifiers off").format(
-        len(shown.vertices), len(base.vertices), "shape key" if settings.output == 'SHAPE_KEY' else "mesh")
-
-
