@@ -23,6 +23,10 @@ cd "$(dirname "$0")/.."
 root="$PWD"
 cache="${XDG_CACHE_HOME:-$HOME/.cache}/gauss_stylization/cross"
 jobs=2  # the machine's cores are shared
+# One run at a time: two would remake the same venv and build folders under each other.
+mkdir -p "$cache"
+exec 9> "$cache/lock"
+flock 9
 
 fail() { echo "cross_check: FAILED: $*" >&2; exit 1; }
 # step LOG WHAT COMMAND...: runs COMMAND with its output in LOG; on failure shows the log's end and stops.
