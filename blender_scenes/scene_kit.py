@@ -53,6 +53,23 @@ def reset_scene():
             collection.remove(block)
     for child in list(bpy.context.scene.collection.children):
         bpy.data.collections.remove(child)
+    # Mesh.copy() gives the copied shape keys a second user, so they outlive their mesh; Blender 4.5
+    # and later refuse to save a file with such keys (an error: "invalid 'from' pointer").
+    bpy.data.batch_remove([key for key in bpy.data.shape_keys if key.user is None])
+    # Blender 4.x and later resync the view layer lazily: until then its objects list holds None
+    # where the removed objects were.
+    bpy.context.view_layer.update()
+
+
+def _fcurves(animation_data):
+    """The F-curves of the action ``animation_data`` plays: Action.fcurves up to Blender 4.5, the
+    channelbag of the action's slot in the layered actions of 5.0 and later (Action.fcurves is gone)."""
+    action = animation_data.action
+    if hasattr(action, "fcurves"):
+        return action.fcurves
+    from bpy_extras import anim_utils
+    channelbag = anim_utils.action_get_channelbag_for_slot(action, animation_data.action_slot)
+    return channelbag.fcurves if channelbag is not None else []
 
 
 def link(obj):
@@ -218,7 +235,7 @@ def bending_rig(obj, pivot, direction, bent_weights, degrees, frames):
     for frame, angle in zip(frames, (0.0, degrees)):
         bone.rotation_euler = (math.radians(angle), 0.0, 0.0)
         bone.keyframe_insert("rotation_euler", frame=frame)
-    for curve in rig.animation_data.action.fcurves:
+    for curve in _fcurves(rig.animation_data):
         for point in curve.keyframe_points:
             point.interpolation = 'LINEAR'
     scene = bpy.context.scene

@@ -99,13 +99,18 @@ class _Bake:
 
     def __init__(self, context, obj, filepath, total):
         self.obj, self.scene = obj, context.scene
-        self.settings = obj.gauss_stylization
         self.modifier_path, self.path = resolve_path(filepath, obj)
         self.total, self.done = total, 0
         self.writer = None
         self.frame = (self.scene.frame_current, self.scene.frame_subframe)
         self.applied = to_dict(self.settings)
         self.suspended = cache_modifier.Suspended(obj).__enter__()
+
+    @property
+    def settings(self):
+        """Read through the object every time: a kept reference to the settings of an object deleted
+        mid-bake reads freed memory (Blender 5.x crashes), the object's raises ReferenceError."""
+        return self.obj.gauss_stylization
 
     def _open(self, points, start):
         self.writer = pc2.Writer(self.path, points, self.total, start=float(start))

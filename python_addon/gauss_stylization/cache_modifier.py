@@ -33,12 +33,21 @@ class Suspended:
     mesh is what the bake reads, not the previous bake. Restored on exit."""
 
     def __init__(self, obj):
-        self.modifier = find(obj)
-        self.shown = self.modifier.show_viewport if self.modifier is not None else None
+        # The modifier is found through the object each time: a kept reference to the modifier of an
+        # object deleted meanwhile reads freed memory (Blender 5.x crashes), the object's raises
+        # ReferenceError.
+        self.obj = obj
+        modifier = find(obj)
+        self.shown = modifier.show_viewport if modifier is not None else None
+
+    @property
+    def modifier(self):
+        return find(self.obj) if self.shown is not None else None
 
     def __enter__(self):
-        if self.modifier is not None and self.shown:
-            self.modifier.show_viewport = False
+        modifier = self.modifier
+        if modifier is not None and self.shown:
+            modifier.show_viewport = False
         return self
 
     def __exit__(self, *_exc):
@@ -47,8 +56,9 @@ class Suspended:
 
     def restore(self):
         try:
-            if self.modifier is not None and self.modifier.show_viewport != self.shown:
-                self.modifier.show_viewport = self.shown
+            modifier = self.modifier
+            if modifier is not None and modifier.show_viewport != self.shown:
+                modifier.show_viewport = self.shown
         except ReferenceError:  # removed with its object meanwhile
             pass
 
@@ -71,7 +81,9 @@ def attach(obj, filepath, frame_start, last):
     modifier.frame_scale = 1.0
     modifier.forward_axis = 'POS_Y'
     modifier.up_axis = 'POS_Z'
-    modifier.flip_axis = set()
+    # No flip: a set of axes in Blender 3.4, three booleans in 4.2 and later.
+    flip = modifier.bl_rna.properties["flip_axis"]
+    modifier.flip_axis = set() if flip.type == 'ENUM' else (False,) * flip.array_length
     modifier.show_viewport = modifier.show_render = True
     _move(obj, modifier, len(obj.modifiers) - 1 if last else 0)
     obj.update_tag()  # the file may have been replaced under the same name

@@ -123,9 +123,10 @@ class _Number(Field):
 def _float32_inside(low, high):
     """The float32 range Blender stores as min/max, rounded inwards, so a clamped value passes the check."""
     low32, high32 = np.float32(low), np.float32(high)
-    if low32 < low:
+    # Compared as Python floats: numpy 2 compares a float32 with a Python float in float32 (NEP 50).
+    if float(low32) < low:
         low32 = np.nextafter(low32, np.float32(np.inf))
-    if high32 > high:
+    if float(high32) > high:
         high32 = np.nextafter(high32, np.float32(-np.inf))
     return float(low32), float(high32)
 

@@ -186,12 +186,19 @@ DEFAULT_SIDEBAR_PX = 220.0  # Blender's default sidebar width at scale 1 (UI_SID
 LABEL_POINTS = 11.0
 
 
+def ui_scale(context):
+    """The UI's scale factor. Without a window (blender -b, Blender as a Python module) Blender leaves
+    it at 0 (no display to take a DPI from), so the artist's Resolution Scale stands in for it: at 0,
+    Blender 4.x and later measure text as if every character were a pixel wide and no label fit."""
+    return context.preferences.system.ui_scale or context.preferences.view.ui_scale
+
+
 def label_width(context=None):
     """Pixels a label's text has in a sidebar panel row: the sidebar's width (Blender's default
     where there is none, as in background mode) less margins, icon and tab strip."""
     context = context or bpy.context
     region = context.region
-    scale = context.preferences.system.ui_scale
+    scale = ui_scale(context)
     width = region.width if region is not None and region.type == 'UI' else DEFAULT_SIDEBAR_PX * scale
     return max(width - LABEL_MARGIN_UNITS * 20.0 * scale, 2 * 20.0 * scale)  # never so narrow nothing fits
 
@@ -199,7 +206,7 @@ def label_width(context=None):
 def text_width(text, context=None):
     """Pixels ``text`` takes in the UI's font at the current UI scale."""
     context = context or bpy.context
-    blf.size(0, LABEL_POINTS * context.preferences.system.ui_scale)  # no DPI argument: gone in 4.0
+    blf.size(0, LABEL_POINTS * ui_scale(context))  # no DPI argument: gone in 4.0
     return blf.dimensions(0, text)[0]
 
 

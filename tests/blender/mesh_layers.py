@@ -14,6 +14,7 @@ _ATTRIBUTE_READ = {
     'BOOLEAN': ("value", 1, bool), 'FLOAT_VECTOR': ("vector", 3, np.float32),
     'FLOAT2': ("vector", 2, np.float32), 'FLOAT_COLOR': ("color", 4, np.float32),
     'BYTE_COLOR': ("color", 4, np.float32), 'INT32_2D': ("value", 2, np.int32),
+    'INT16_2D': ("value", 2, np.int32),  # custom normals, Blender 4.1 and later
     'QUATERNION': ("value", 4, np.float32),
 }
 _DOMAIN_SIZE = {'POINT': "vertices", 'EDGE': "edges", 'FACE': "polygons", 'CORNER': "loops"}

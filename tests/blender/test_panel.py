@@ -95,7 +95,7 @@ def test_the_gauss_sphere_checkbox_shows_before_any_slot_and_stylize_says_what_i
     obj = helpers.activate(helpers.suzanne(levels=0))
     rows = draw(addon.ui.VIEW3D_PT_gauss_styles)
     assert len(obj.gauss_stylization.styles) == 0 and "show_gauss_sphere" in props(rows)
-    assert "Stylize adds a Cube style" in labels(rows)
+    assert "Stylize adds a Cube style" in " ".join(labels(rows))  # (wrapped to the sidebar's width)
 
 
 def test_the_panel_says_before_the_click_that_the_modifiers_keep_the_result_out_of_the_mesh(addon):

@@ -26,9 +26,15 @@ def _slots_with_every_preset():
     return obj
 
 
+def _stored(obj):
+    """The ID properties behind the add-on's registered properties, as the .blend holds them: since
+    Blender 5.0 apart from the custom properties (bl_system_properties_get), before that among them."""
+    return obj.bl_system_properties_get() if hasattr(obj, "bl_system_properties_get") else obj
+
+
 def _stored_numbers(obj):
     """The numbers the .blend holds: the ID properties behind the enum."""
-    return [slot["preset"] for slot in obj["gauss_stylization"]["styles"]]
+    return [slot["preset"] for slot in _stored(obj)["gauss_stylization"]["styles"]]
 
 
 def test_presets_are_stored_with_the_numbers_of_saved_files():
@@ -40,7 +46,7 @@ def test_a_file_with_the_saved_numbers_opens_with_the_same_presets(tmp_path):
     obj = _slots_with_every_preset()
     # Write the numbers as an old file holds them, in an order unlike the registry's.
     shuffled = list(reversed(SAVED_NUMBERS.items()))
-    for raw, (identifier, number) in zip(obj["gauss_stylization"]["styles"], shuffled):
+    for raw, (identifier, number) in zip(_stored(obj)["gauss_stylization"]["styles"], shuffled):
         raw["name"], raw["preset"] = identifier, number
     path = str(tmp_path / "saved_presets.blend")
     bpy.ops.wm.save_as_mainfile(filepath=path)
@@ -54,7 +60,7 @@ def test_a_preset_number_this_version_does_not_know_is_refused_by_name():
     # E.g. a file saved by a later version whose solver has more presets.
     obj = helpers.suzanne(levels=0)
     helpers.add_slot(obj, 'CUBE', name="Later")
-    obj["gauss_stylization"]["styles"][0]["preset"] = 50
+    _stored(obj)["gauss_stylization"]["styles"][0]["preset"] = 50
     before = helpers.coords(obj)
     with pytest.raises(RuntimeError, match="Style 'Later': Style holds a value this version does not know"):
         bpy.ops.object.gauss_stylize(iterations=3)
