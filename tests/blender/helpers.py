@@ -18,10 +18,12 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 MESHES = os.path.join(REPO, "..", "shared", "meshes")
 BUILD = os.path.abspath(os.environ.get("GAUSS_BUILD_DIR", os.path.join(REPO, "build")))
-if not os.path.isdir(os.path.join(BUILD, "addon", "gauss_stylization")):
-    raise ImportError("no add-on in %s: build the project first (bash scripts/build.sh)"
-                      % os.path.join(BUILD, "addon"))
-for _path in (os.path.join(BUILD, "addon"), os.path.join(REPO, "tests", "common"),
+# The folder holding the gauss_stylization package under test: the build's staged add-on, or where
+# Blender installed it (GAUSS_ADDON_DIR, set by scripts/test_blender_versions.sh).
+ADDON_DIR = os.path.abspath(os.environ.get("GAUSS_ADDON_DIR", os.path.join(BUILD, "addon")))
+if not os.path.isdir(os.path.join(ADDON_DIR, "gauss_stylization")):
+    raise ImportError("no add-on in %s: build the project first (bash scripts/build.sh)" % ADDON_DIR)
+for _path in (ADDON_DIR, os.path.join(REPO, "tests", "common"),
               os.path.join(REPO, "blender_scenes")):
     if _path not in sys.path:
         sys.path.insert(0, _path)

@@ -1,14 +1,19 @@
 """Run the add-on's pytest suite inside Blender (headless).
 
     blender -b --factory-startup --python-exit-code 1 -P tests/blender/run_headless.py -- BUILD_DIR [pytest args]
+    python tests/blender/run_headless.py -- BUILD_DIR [pytest args]    (a Python with `bpy`, Blender as a module)
 
 BUILD_DIR (default: <repo>/build) must hold addon/gauss_stylization with the
-compiled gauss_core module, as staged by the CMake build. Exits with pytest's
+compiled gauss_core module, as staged by the CMake build; GAUSS_ADDON_DIR, when
+set, names another folder holding the gauss_stylization package to test (where
+Blender installed it: scripts/test_blender_versions.sh). Exits with pytest's
 status, so any failure makes Blender exit non-zero.
 """
 
 import os
 import sys
+
+import bpy  # noqa: F401  (in a bpy module Blender starts here; inside Blender it is already loaded)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
@@ -24,4 +29,9 @@ def main():
     return int(pytest.main([HERE, "-p", "no:cacheprovider", "-ra", *argv[1:]]))
 
 
-sys.exit(main())
+status = main()
+if not bpy.app.binary_path:  # Blender as a Python module: see blender_process.exit_now
+    sys.path.insert(0, HERE)
+    from blender_process import exit_now
+    exit_now(status)
+sys.exit(status)

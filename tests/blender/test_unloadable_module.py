@@ -31,11 +31,13 @@ def _detected_versions():
 
 
 @pytest.fixture
-def native_beside(addon, tmp_path):
+def native_beside(addon, tmp_path, monkeypatch):
     """native_beside({file name: bytes}) -> the add-on's native module, imported from a package of its
     own that holds the add-on's Python modules (an empty __init__, so nothing registers or loads
-    eagerly) and, as its only gauss_core files, the given ones. The add-on's own gauss_core stays
+    eagerly) and, as its only gauss_core files, the given ones (a top-level gauss_core, which an
+    installed extension's wheel is, cannot be imported meanwhile). The add-on's own gauss_core stays
     loaded and untouched."""
+    monkeypatch.setitem(sys.modules, "gauss_core", None)
     loaded = []
 
     def load(files):
@@ -99,6 +101,7 @@ def unloadable(addon, monkeypatch):
     monkeypatch.setattr(addon.native, "_core", None)
     monkeypatch.delattr(addon, "gauss_core", raising=False)  # set on the package by the first import
     monkeypatch.setitem(sys.modules, addon.__name__ + ".gauss_core", None)  # makes importing it fail
+    monkeypatch.setitem(sys.modules, "gauss_core", None)  # and the top-level one (an extension's wheel)
     return addon
 
 
