@@ -245,10 +245,20 @@ TEST(CholeskySolver, ProgressRisesToOneThroughTheFactorPhases) {
       std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
   });
-  gauss::CholeskySolver s;
-  s.factor(A, &progress);
-  done = true;
-  watcher.join();
+  // Joined however factor() ends: a throw (say, too little memory) must fail the test, not terminate it.
+  struct JoinWatcher {
+    std::atomic<bool>& done;
+    std::thread& thread;
+    ~JoinWatcher() {
+      done = true;
+      thread.join();
+    }
+  };
+  {
+    JoinWatcher join{done, watcher};
+    gauss::CholeskySolver s;
+    s.factor(A, &progress);
+  }
   EXPECT_EQ(progress.fraction(), 1.0);
   EXPECT_STREQ(progress.phase(), "done");
   EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
