@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # The project's tests.
 #   bash scripts/run_tests.sh          everything (the README's test command, and CI's): C++ (ctest), the
-#                                      Python module (pytest), the Blender add-on headless and in a real
-#                                      window (xvfb), the C++ tests under ASan+UBSan, a bounded fuzzing run
+#                                      Python module (pytest, also against numpy 2), the Blender add-on
+#                                      headless and in a real window (xvfb, Debian's Blender 3.4.1), the
+#                                      headless suite in every Blender release PyPI serves as a bpy wheel,
+#                                      the Windows/macOS cross check, the C++ tests under ASan+UBSan, a
+#                                      bounded fuzzing run
 #   bash scripts/run_tests.sh --fast   the quick tier for a developer changing a file: ctest without its
 #                                      slow cases, pytest, and the headless Blender suite (a couple of
 #                                      minutes with a warm build)
@@ -42,7 +45,10 @@ run_part "Python module (pytest)" env GAUSS_BUILD_DIR="$PWD/build" /usr/bin/pyth
 run_part "Blender add-on, headless" \
   blender -b --factory-startup --python-exit-code 1 -P tests/blender/run_headless.py -- "$PWD/build"
 if [ $fast -eq 0 ]; then
+  run_part "Python module against numpy 2 (Python 3.11, 3.13)" bash scripts/test_numpy2.sh
   run_part "Blender add-on, real window (xvfb)" bash tests/blender/run_windowed.sh "$PWD/build"
+  run_part "Blender add-on in every bpy release (4.2 to 5.3)" bash scripts/test_blender_versions.sh
+  run_part "Windows and macOS cross check (MinGW + wine, zig)" bash scripts/cross_check.sh
   run_part "C++ tests under ASan+UBSan" bash scripts/run_sanitizers.sh build-asan
   run_part "libFuzzer (60 s)" bash scripts/run_fuzz.sh 60
 fi
