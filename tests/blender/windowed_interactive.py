@@ -17,6 +17,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import windowed_driver as d  # noqa: E402  (also sets up the paths and the window options)
+from windowed_actions import area_screenshot  # noqa: E402
 
 from gauss_stylization import (  # noqa: E402  (windowed_driver put the add-on on sys.path)
     gauss_sphere, handle_tool, handles, native, settings_io, sphere_overlay, styles)
@@ -83,21 +84,6 @@ def drag(d, start, end, moves=6, button='LEFTMOUSE'):
     win.event_simulate(type=button, value='RELEASE', x=x1, y=y1)
 
 
-def area_screenshot(d, path):
-    """The 3D view as an (H, W, 4) float array (row 0 at the bottom), saved to ``path``."""
-    area, _ = d.view3d()
-    if os.path.exists(path):
-        os.remove(path)
-    with bpy.context.temp_override(window=d.window(), area=area):
-        bpy.ops.screen.screenshot_area(filepath=path)
-    image = bpy.data.images.load(path)
-    width, height = image.size
-    pixels = np.empty(width * height * 4, np.float32)
-    image.pixels.foreach_get(pixels)
-    bpy.data.images.remove(image)
-    return pixels.reshape(height, width, 4)
-
-
 def disc_mask(d, shape, grow=1.0):
     """Pixels of an area screenshot inside the sphere's outline (``grow`` times its radius)."""
     area, _ = d.view3d()
@@ -115,10 +101,10 @@ def sphere_is_drawn(d, name):
     settings_io.apply_dict(settings, {"styles": [{"preset": 'CUBE'}], "active_style_index": 0,
                                       "show_gauss_sphere": False})
     yield 0.5
-    off = area_screenshot(d, os.path.join(d.SHOTS, "sphere_off.png"))
+    off = area_screenshot(os.path.join(d.SHOTS, "sphere_off.png"))
     settings.show_gauss_sphere = True
     yield 0.5
-    on = area_screenshot(d, os.path.join(d.SHOTS, "sphere_overlay.png"))
+    on = area_screenshot(os.path.join(d.SHOTS, "sphere_overlay.png"))
     area, _ = d.view3d()
     d.check("screenshot of the Gauss sphere has the 3D view's size",
             on.shape[:2] == (area.height, area.width), "%s vs %dx%d" % (on.shape, area.height, area.width))
@@ -287,7 +273,7 @@ def handle_dragging(d, name):
     steps = d.live_operator().session.steps
     _drag_handle(d, grab, (100, 0))
     yield from d.wait_steps(steps + 3)  # still holding the button
-    area_screenshot(d, os.path.join(d.SHOTS, "handle_drag.png"))
+    area_screenshot(os.path.join(d.SHOTS, "handle_drag.png"))
     op = d.live_operator()
     d.check("a press on a pin grabs its handle and the run keeps stepping while it is dragged",
             op is not None and handle_tool.tool_of(op).drag is not None and op.session.steps > steps + 2,

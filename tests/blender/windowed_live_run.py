@@ -24,6 +24,7 @@ from windowed_driver import (  # noqa: E402
     check, coords, live_operator, live_run, new_reports, press, push_undo, view3d, viewport_point,
     wait_steps, wait_stopped, window)
 from scene_kit import activate  # noqa: E402
+from windowed_actions import move_with_g  # noqa: E402
 import helpers  # noqa: E402
 
 SIGMA_PATH = "gauss_stylization.styles[0].sigma"
@@ -116,22 +117,6 @@ def drag(x, y, dx, dy, steps=10, **modifiers):
         win.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x + dx * i // steps, y=y + dy * i // steps)
     yield 0.05
     win.event_simulate(type='LEFTMOUSE', value='RELEASE', x=x + dx, y=y + dy, **modifiers)
-    yield 0.3
-
-
-def move_with_g(dx=60):
-    """Generator: G over the viewport, move the mouse, click to confirm (a Move of the selection)."""
-    x, y = viewport_point()
-    win = window()
-    win.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
-    yield 0.1
-    win.event_simulate(type='G', value='PRESS', x=x, y=y)
-    win.event_simulate(type='G', value='RELEASE', x=x, y=y)
-    yield 0.2
-    for i in range(1, 6):
-        win.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x + dx * i // 5, y=y)
-        yield 0.05
-    press('LEFTMOUSE', x + dx, y)  # confirms the move; the release must not keep the run
     yield 0.3
 
 

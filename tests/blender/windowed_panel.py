@@ -22,6 +22,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import windowed_driver as d  # noqa: E402  (also sets up the paths and the window options)
 from panel_recorder import draw, labels  # noqa: E402
+from windowed_actions import area_screenshot  # noqa: E402
 
 from gauss_stylization import (  # noqa: E402  (windowed_driver put the add-on on sys.path)
     bake_ui, gauss_sphere, handle_tool, settings_io, sphere_overlay, ui)
@@ -97,23 +98,6 @@ def sidebar():
     return d.view3d()[1]['UI']
 
 
-def area_pixels(name):
-    """The 3D view area as an (H, W, 4) float array (row 0 at the bottom), saved as ``name``."""
-    area, _ = d.view3d()
-    path = os.path.join(d.SHOTS, name)
-    if os.path.exists(path):
-        os.remove(path)
-    with bpy.context.temp_override(window=d.window(), area=area):
-        bpy.ops.screen.screenshot_area(filepath=path)
-    image = bpy.data.images.load(path)
-    width, height = image.size
-    pixels = np.empty(width * height * 4, np.float32)
-    image.pixels.foreach_get(pixels)
-    bpy.data.images.remove(image)
-    os.remove(path)
-    return pixels.reshape(height, width, 4)
-
-
 def save_png(pixels, name):
     height, width = pixels.shape[:2]
     image = bpy.data.images.new(name, width, height, alpha=True)
@@ -138,7 +122,7 @@ def sidebar_shot(name):
     yield 0.4  # let the panels draw first
     area, _ = d.view3d()
     region = sidebar()
-    pixels = area_pixels("area_" + name)
+    pixels = area_screenshot(os.path.join(d.SHOTS, "area_" + name), keep=False)
     x, y = region.x - area.x, region.y - area.y
     save_png(pixels[y:y + region.height, x:x + region.width], name)
     path = os.path.join(d.SHOTS, name)
@@ -264,7 +248,7 @@ def sphere_highlights_and_axes(name):
     active, other = facing[0], facing[-1]
     slot.active_normal_index = active
     yield 0.6
-    pixels = area_pixels("sphere_highlight.png")
+    pixels = area_screenshot(os.path.join(d.SHOTS, "sphere_highlight.png"), keep=False)
     where = _sphere_frame()
 
     def pixel_of(direction):
@@ -276,7 +260,7 @@ def sphere_highlights_and_axes(name):
             and not _colour_near(pixels, *pixel_of(normals[other]), _orange, reach=1))
     slot.active_normal_index = other
     yield 0.5
-    pixels = area_pixels("sphere_highlight.png")
+    pixels = area_screenshot(os.path.join(d.SHOTS, "sphere_highlight.png"), keep=False)
     reach = int(1.5 * where.radius)  # the sphere, its axis labels and its title, to look at
     save_png(pixels[max(0, int(where.y) - reach):int(where.y) + reach, max(0, int(where.x) - reach):int(where.x) + reach],
              "sphere_axes.png")

@@ -30,6 +30,7 @@ from windowed_driver import (  # noqa: E402
     check, coords, live_operator, live_run, marker, mesh_coords, new_reports, override, press, push_undo, set_marker,
     viewport_point, wait_steps, wait_stopped, window)
 from scene_kit import activate, import_obj  # noqa: E402
+from windowed_actions import move_with_g  # noqa: E402
 
 TIME_LIMIT = 600.0  # seconds (idle machine: about a minute and a half)
 FOLDER = tempfile.mkdtemp(prefix="gauss_undo_save_")
@@ -44,22 +45,6 @@ def key(event_type, **modifiers):
     """Generator: a key pressed over the viewport, then time for Blender to act on it."""
     press(event_type, *viewport_point(), **modifiers)
     yield 0.5
-
-
-def move_with_g(dx=60):
-    """Generator: G over the viewport, the mouse moved, a click to confirm (one Move undo step)."""
-    x, y = viewport_point()
-    win = window()
-    win.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
-    yield 0.1
-    win.event_simulate(type='G', value='PRESS', x=x, y=y)
-    win.event_simulate(type='G', value='RELEASE', x=x, y=y)
-    yield 0.2
-    for i in range(1, 6):
-        win.event_simulate(type='MOUSEMOVE', value='NOTHING', x=x + dx * i // 5, y=y)
-        yield 0.05
-    press('LEFTMOUSE', x + dx, y)
-    yield 0.3
 
 
 def state(name):
