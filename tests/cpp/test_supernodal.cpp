@@ -186,11 +186,14 @@ TEST(SupernodalAnalysis, StructureMatchesDenseSymbolicElimination) {
         if (L.block(i, c0, 1, w).any()) columns_union.push_back(i);
       EXPECT_EQ(std::vector<int>(S.rows.begin() + r0, S.rows.begin() + r0 + m), columns_union) << "supernode " << s;
       EXPECT_EQ(S.value_start[s + 1] - S.value_start[s], static_cast<int64_t>(w) * m);
-      stored += static_cast<long long>(w) * m - static_cast<long long>(w) * (w - 1) / 2;
+      // Relaxed supernodes store a few explicit zeros: under 30% of a block (the share the analysis
+      // allows the narrowest merged blocks; wider ones are allowed less).
+      const long long block_values = static_cast<long long>(w) * m - static_cast<long long>(w) * (w - 1) / 2;
+      const long long block_nonzeros = L.block(c0, c0, n - c0, w).count();
+      EXPECT_LT(block_values - block_nonzeros, 0.3 * block_values + 1e-9) << "supernode " << s;
+      stored += block_values;
     }
-    // Relaxed supernodes store a few explicit zeros, never fewer values than L has.
     EXPECT_GE(stored, count(L));
-    EXPECT_LE(stored, 2 * count(L)) << "stored " << stored << ", L " << count(L);
 
     // Fundamental supernodes (column j+1 is j's only child and has j's structure below j) are never
     // split: relaxation only merges them.
