@@ -1,4 +1,4 @@
-"""Measures custom-normal styles (issue 14 item 2): set-up time of gauss_core.Style, time per solver
+"""Measures custom-normal styles: set-up time of gauss_core.Style, time per solver
 step on Spot with that style, and the accuracy of g and its gradient.
 
   setup/step:  python3 measure_many_normals.py time BUILD_DIR [--rounds N]

@@ -6,8 +6,8 @@
 //
 // reldV = max over coordinates |T(U) - U|  /  max over coordinates |T(U) - V|
 // (U the vertices the step was applied to, V the rest mesh): the stopping rule of the reference cubic
-// stylization code, which issues 11 and 12 adopt; for the plain iteration U is the previous step's
-// result, so this is exactly "the largest change of a step over the largest displacement". It is
+// stylization code, so a tolerance means the same as there; for the plain iteration U is the previous
+// step's result, so this is exactly "the largest change of a step over the largest displacement". It is
 // invariant to translation and scale, so the solver's normalized frame gives the caller's value. One
 // deviation: a displacement from the rest mesh below kStillDisplacement times the mesh's size counts
 // as that much, because a mesh that does not move (a cube under the cube style) moves by rounding

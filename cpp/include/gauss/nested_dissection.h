@@ -3,7 +3,8 @@
 // of vertices of the matrix's graph, the separator, splits it in two; both halves are ordered first
 // (recursively) and the separator last, so eliminating one half never fills into the other. On a mesh
 // Laplacian the separators are rings of vertices around the surface, and on big meshes the factor
-// comes out much sparser than with minimum degree (README, Performance: the measured fill of both).
+// comes out much sparser than with minimum degree (docs/performance.md, Set-up at scale: the measured
+// fill of both).
 //
 // Separators come from graph_bisection.h (multilevel). Graphs of at most 50,000 vertices, and the
 // pieces of at most 1,000 vertices the dissection ends in, are ordered by approximate minimum degree

@@ -72,8 +72,8 @@ inline constexpr Setting tolerance{"tolerance", "tolerance", 1e-3, 1e-5, 1.0, fa
 inline constexpr const Setting* all[] = {&lambda,          &sigma,        &mu,       &axis_contribution,
                                          &admm_iterations, &cubic_lambda, &tolerance};
 
-// After each step, scale every component back to its rest volume (closed) or area (open): issue 10's
-// Keep Volume (volume_keeper.h).
+// Keep Volume (volume_keeper.h): after each step, scale every component back to its rest volume (closed)
+// or area (open), since stylization shrinks a mesh. Off by default, as the paper's method does not rescale.
 inline constexpr Option keep_volume{"keep_volume", false};
 
 // Accelerate the iteration (fixed_point_iteration.h): the same result in about a third of the steps.
@@ -81,14 +81,14 @@ inline constexpr Option acceleration{"acceleration", true};
 
 inline constexpr const Option* options[] = {&keep_volume, &acceleration};
 
-// The acceleration's parameters (fixed_point_iteration.h) per method, chosen by measurement on the
-// bunny, Spot and the armadillo: the momentum factor beta, and for how many steps a vertex whose step
-// turned against its momentum goes without (so flapping sliver regions are not kicked further). The
-// cubic method's iteration also carries its ADMM state and creeps more slowly: a stronger momentum
-// and no per-vertex hold measured fastest with the same converged share (docs/performance.md). The
-// Gauss method's hold keeps its converged share at the plain run's: without it (hold 0) the 43K
-// armadillo stops after 60 steps at share 0.820 against the plain 0.833 (126 steps, 0.836 with it);
-// bunny 35K 47 vs 54 steps, Spot 73 vs 67, the same shares within 0.002.
+// The acceleration's parameters per method (fixed_point_iteration.h): the momentum factor beta, and for
+// how many steps a vertex whose step turned against its momentum goes without it, so that flapping
+// sliver regions are not kicked further. The cubic method's iteration carries its ADMM state and creeps
+// more slowly, so a stronger momentum and no hold serve it best: the fastest to the same converged share
+// on the bunny, Spot and the armadillo (docs/performance.md). The Gauss method needs its hold to keep the
+// plain iteration's converged share: without it the 43K armadillo stops after 60 steps at 0.820, where
+// the plain iteration reaches 0.833 in 126 steps and the hold 0.836; on the 35K bunny and Spot the
+// shares agree within 0.002 either way.
 struct Momentum {
   double beta;
   int hold;
@@ -107,7 +107,7 @@ inline constexpr const char* default_preset = "cube";
 
 // Limits on the input rather than settings (no default): beyond them the arithmetic would overflow.
 // Coordinates of vertices that faces use: within +-max_coordinate (near 1e308 the output
-// x * scale + center overflowed to infinity).
+// x * scale + center overflows to infinity).
 inline constexpr double max_coordinate = 1e200;
 // Pin targets and the vertices set_vertices() takes: within max_pin_distance times the mesh's size of
 // its centre (beyond ~1e150 sizes, squared edge lengths overflow and E_ARAP turns infinite).

@@ -1,5 +1,5 @@
 #pragma once
-// Keep Volume (issue 10): stylization shrinks a mesh (the paper lists it as a limitation); after each
+// Keep Volume: stylization shrinks a mesh (the paper lists it as a limitation); after each
 // step this scales every component uniformly about its vertex centroid back to its rest size.
 //
 // Size: a closed component (no boundary edge) keeps its signed volume (sum over its triangles of
