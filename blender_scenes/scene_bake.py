@@ -1,4 +1,4 @@
-"""Animation bake (issue 10): a capsule bent by a two-bone armature over ten frames, baked with
+"""Animation bake: a capsule bent by a two-bone armature over ten frames, baked with
 Bake Animation (warm start: every frame continues from the previous frame's result, so the style
 holds still while the shape moves) into a point cache that a Mesh Cache modifier plays. Top row:
 the animation at frames 1, 4, 7 and 10; bottom row: the same frames of the baked cache. Cube style,

@@ -1,4 +1,4 @@
-"""Keep Volume (issue 10): stylization shrinks a shape (a limitation the paper lists); with Keep
+"""Keep Volume: stylization shrinks a shape (a limitation the paper lists); with Keep
 Volume the solver scales every closed part back to its rest volume after each step, so the
 stylized bunny keeps its size. Watertight bunny (34.8K vertices), Cube style, lambda 4, 100 steps."""
 

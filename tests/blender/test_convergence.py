@@ -1,4 +1,4 @@
-"""Stop when converged (issue 11, issue 12): the object's Tolerance, a scripted run of 0 steps
+"""Stop when converged: the object's Tolerance, a scripted run of 0 steps
 until converged within a step cap, and a live run that stops stepping a converged object and
 resumes when something changes."""
 

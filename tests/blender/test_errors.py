@@ -281,7 +281,7 @@ def test_nan_in_settings_json(addon):
 
 
 def test_all_vertices_pinned_says_nothing_can_move():
-    # Issue 14 item 6: this used to finish silently, having moved nothing.
+    # A run that can move nothing must say so instead of finishing silently.
     obj = _suzanne_with_slot(preset='CUBE')
     helpers.add_group(obj, "Everything", range(len(obj.data.vertices)))
     obj.gauss_stylization.pin_group = "Everything"
@@ -290,8 +290,8 @@ def test_all_vertices_pinned_says_nothing_can_move():
 
 @pytest.mark.parametrize("value, said", [(1e6, "more than 100 times the mesh's size away"), (math.inf, "not finite")])
 def test_a_blown_up_result_is_refused_with_an_accurate_message(monkeypatch, addon, value, said):
-    # Issue 14 item 6: "try a larger Lambda or fix the mesh" did not help; a finite blow-up
-    # (1e20 times the mesh's size on the hole-filled bunny) was written into the mesh.
+    # A blow-up is the solver's defect, so the message must not send the artist to Lambda or the mesh;
+    # a finite one (the hole-filled bunny can reach 1e20 times its size) is refused too, never written.
     obj = _suzanne_with_slot(preset='CUBE')
     _solver_writing(monkeypatch, addon, lambda out: out.__setitem__(7, value))
     _assert_refused(obj, "invalid positions after step 1 \\(%s\\).*a defect of the solver, not of your settings" % said)

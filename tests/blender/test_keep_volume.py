@@ -1,4 +1,4 @@
-"""Keep Volume (settings.keep_volume, issue 10 item 4): the checkbox reaches the solver when a run
+"""Keep Volume (settings.keep_volume): the checkbox reaches the solver when a run
 starts and when it is changed during a live run."""
 
 import bpy

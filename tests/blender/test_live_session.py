@@ -171,7 +171,7 @@ def test_nan_typed_in_mid_run_pauses_and_a_valid_value_resumes(addon, owner, nam
 
 @pytest.mark.parametrize("which", ["Region", "Pin Group"])
 def test_vertex_group_deleted_mid_run_pauses_with_a_message(addon, which):
-    # Issue 14 item 6: the run used to go on with the weights read at start and say nothing.
+    # The group's weights were read at start; once it is gone the run must not go on silently.
     obj = helpers.suzanne(levels=1)
     start = helpers.coords(obj)
     helpers.add_group(obj, "Top", np.flatnonzero(start[:, 2] > 0))

@@ -1,4 +1,4 @@
-"""Stylize on several selected meshes (issue 10 item 1): each with its own settings and
+"""Stylize on several selected meshes: each with its own settings and
 solver, skipped objects named, one undo step; the live run's ticks without a window."""
 
 import json

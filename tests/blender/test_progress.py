@@ -1,4 +1,4 @@
-"""Progress of set-ups and scripted runs (issue 10 item 5, issue 12): nothing for short jobs,
+"""Progress of set-ups and scripted runs: nothing for short jobs,
 and in background mode a line at least every 10% of a longer one."""
 
 import re

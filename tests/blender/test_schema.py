@@ -196,7 +196,7 @@ def test_panel_rows_follow_the_schema(addon):
 
 
 def test_axis_weight_is_shown_only_for_presets_the_solver_gives_rings(addon):
-    # Issue 14 item 6: it was shown for every preset but acts only where there are rings.
+    # The axis weight acts only where there are rings; shown for other presets it would do nothing.
     gauss_core = addon.native.core()
     assert "axis_contribution" not in _slot_rows(addon, 'CUBE')
     for name in gauss_core.PRESETS:

@@ -1,4 +1,4 @@
-"""Set-ups of big meshes off Blender's main thread (issue 12, "Progress while it sets up"):
+"""Set-ups of big meshes off Blender's main thread:
 progress while the solver is prepared, Esc (cancel) stops it at once with nothing changed, and
 a Pin Group changed during a live run re-factors on the worker thread too."""
 
@@ -17,8 +17,8 @@ THREAD = "Gauss Stylize set-up"
 
 @pytest.fixture(autouse=True)
 def _module_reports_set_up_progress(addon):
-    # gauss_core.Progress (set-ups that release the GIL, report and cancel) comes with the
-    # factorization work of issue 12; until the build has it, a set-up blocks and cannot be cancelled.
+    # gauss_core.Progress (set-ups that release the GIL, report and cancel) is missing from older builds
+    # of the module; with one of those a set-up blocks and cannot be cancelled, so there is nothing to test.
     if not hasattr(addon.native.core(), "Progress"):
         pytest.skip("this gauss_core has no Progress (set-ups cannot be watched or cancelled yet)")
 

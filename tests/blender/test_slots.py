@@ -84,7 +84,7 @@ def _select_in_edit_mode(obj, select):
 
 
 def test_from_selected_faces_reads_the_live_edit_mode_selection(capfd):
-    # Issue 14 item 5: it read the stale selection of the mesh data ("No faces are selected").
+    # In Edit Mode the mesh data's selection is stale; reading it would say "No faces are selected".
     bpy.ops.mesh.primitive_cube_add()
     obj = bpy.context.active_object
     slot = helpers.add_slot(obj, 'CUSTOM')

@@ -118,7 +118,7 @@ def test_solves_in_object_space_and_on_the_base_mesh():
 
 
 def test_every_selected_mesh_is_stylized():
-    # Issue 10 item 1 (this used to stylize only the active object).
+    # Every selected mesh, not only the active object.
     other = helpers.suzanne(levels=0)
     other_start = helpers.coords(other)
     active = helpers.suzanne(levels=0)  # becomes the active object

@@ -1,5 +1,5 @@
 """Undo is off while a live run writes mid-run shapes, and the artist's undo_steps (and the
-preferences' unsaved mark) come back on every way runs end (issue 14 item 1). The windowed
+preferences' unsaved mark) come back on every way runs end. The windowed
 tests (windowed_live_run.py) end real runs by each key and click; these cover the module
 state and the handlers without a window."""
 

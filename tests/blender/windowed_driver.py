@@ -340,7 +340,8 @@ def keyed_mesh_esc_restores(keyed):
 
 
 def shape_keys_deleted_mid_run(keyed):
-    """Shape Keys panel > Delete All Shape Keys during a run (this used to crash Blender)."""
+    """Shape Keys panel > Delete All Shape Keys during a run: removing the key being written must not
+    crash Blender."""
     new_reports()
     obj = bpy.data.objects[keyed]
     obj.gauss_stylization.output = 'MESH'

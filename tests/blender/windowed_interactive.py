@@ -1,4 +1,4 @@
-"""The live run in a real window, third part: the interactive tools of issue 9: the Gauss
+"""The live run in a real window, third part: the interactive tools: the Gauss
 sphere overlay, editing on it, and dragging pin handles during a live run. Run by
 run_windowed.sh after windowed_driver.py, whose helpers (check, press, window, view3d,
 live_run, wait_steps, ...) the scenarios use as ``d``; every press and drag is simulated:

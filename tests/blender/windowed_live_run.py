@@ -1,5 +1,5 @@
-"""The live run in a real window, second part: undo, clicks, several objects, messages
-(issues 14 and 10). Run by run_windowed.sh after windowed_driver.py, whose helpers it uses:
+"""The live run in a real window, second part: undo, clicks, several objects, messages.
+Run by run_windowed.sh after windowed_driver.py, whose helpers it uses:
 
     blender --factory-startup --enable-event-simulate -P tests/blender/windowed_live_run.py -- BUILD_DIR
 
@@ -144,7 +144,7 @@ def selection_state(obj):
     return coords(obj), tuple(obj.location), obj.gauss_stylization.styles[0].sigma
 
 
-# -- undo (issue 14 item 1) ----------------------------------------------------------------
+# -- undo ----------------------------------------------------------------------------------
 
 def edit_during_a_run(name, sigma, ending, states):
     """Generator: a live run in which Sigma is typed into the sidebar and the object is moved
@@ -211,7 +211,7 @@ def sigma_and_move_during_a_cancelled_run(name):
           and np.array_equal(coords(bpy.data.objects[name]), before[0]))
 
 
-# -- clicks (issue 14 item 4) --------------------------------------------------------------
+# -- clicks --------------------------------------------------------------------------------
 
 def gizmo_and_header_clicks(name):
     obj = bpy.data.objects[name]
@@ -273,7 +273,7 @@ def outliner_selection(name, other):
     yield from kit.end_with('ESC', "Esc then restores the mesh bit-exactly", name, original)
 
 
-# -- several objects (issue 10 item 1) -------------------------------------------------------
+# -- several objects -----------------------------------------------------------------------
 
 def several_objects(name, other):
     first, second = bpy.data.objects[name], bpy.data.objects[other]
@@ -302,7 +302,7 @@ def several_objects(name, other):
     activate(bpy.data.objects[name])
 
 
-# -- messages (issue 14 item 6) --------------------------------------------------------------
+# -- messages ------------------------------------------------------------------------------
 
 def region_group_deleted(name):
     obj = bpy.data.objects[name]
@@ -330,7 +330,7 @@ def region_group_deleted(name):
     yield from kit.end_with('ESC', "Esc then restores the mesh bit-exactly", name, original)
 
 
-# -- converged (issue 12: stop when converged) -----------------------------------------------
+# -- converged: stop when converged --------------------------------------------------------
 
 def converged_then_sigma_resumes(name):
     """A live run whose object reaches its Tolerance stops stepping and says Converged; a Sigma typed
@@ -365,8 +365,8 @@ def converged_then_sigma_resumes(name):
 
 def cubic_converges_accelerated(name):
     """The cubic method in a live run reaches the default Tolerance and says Converged, in fewer
-    than half the steps of the plain iteration on the same mesh and settings (issue 12: the same
-    acceleration for the cubic method); Esc restores the mesh."""
+    than half the steps of the plain iteration on the same mesh and settings (the acceleration
+    serves the cubic method too); Esc restores the mesh."""
     obj = bpy.data.objects[name]
     activate(obj)
     settings = obj.gauss_stylization
@@ -396,12 +396,12 @@ def cubic_converges_accelerated(name):
     settings.method = before
 
 
-# -- a big set-up (issue 12: progress while it sets up) --------------------------------------
+# -- a big set-up: progress while it sets up -----------------------------------------------
 
 def big_set_up_esc(name):
     """A 360K-vertex mesh: the set-up shows its progress, Blender stays responsive, Esc cancels
     it at once and nothing has changed."""
-    if not hasattr(addon().native.core(), "Progress"):  # set-ups that report and cancel: issue 12's module
+    if not hasattr(addon().native.core(), "Progress"):  # a module whose set-ups report and cancel
         print("big_set_up_esc: skipped, this gauss_core has no Progress", flush=True)
         return
     import bmesh
@@ -481,7 +481,7 @@ def scripted_run_in_a_window(name):
     check("... and is one undo step", np.array_equal(coords(bpy.data.objects[name]), original))
 
 
-# -- undo steps given back on every ending (issue 14 item 1) ----------------------------------
+# -- undo steps given back on every ending -------------------------------------------------
 
 def addon():
     import gauss_stylization  # windowed_driver put BUILD/addon on sys.path

@@ -142,7 +142,7 @@ TEST(ConstrainedLaplacian, RefusesInconsistentSizes) {
   EXPECT_THROW(ConstrainedLaplacian(fx.topo, fx.weight, {Vector3d::Zero()}, {}, {}), std::invalid_argument);
 }
 
-// ---- Through GaussSolver: dragging pins (issue 9, section 1). ----
+// ---- Through GaussSolver: dragging pins. ----
 
 namespace {
 

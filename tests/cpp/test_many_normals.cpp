@@ -1,5 +1,5 @@
-// Styles with many preferred normals (issue 14, item 2): merging near-parallel directions, NormalField's
-// tolerance at the input normals over the families and sigmas of the issue, its truncation bound and the
+// Styles with many preferred normals: merging near-parallel directions, NormalField's tolerance at the
+// input normals over the input families below and the whole sigma range, its truncation bound and the
 // dense solution, its thread-independence, and the size limit.
 #include <gtest/gtest.h>
 
@@ -77,8 +77,8 @@ TEST(MergeDirections, ZeroAngleMergesOnlyIdenticalDirectionsAndBadInputIsRefused
   EXPECT_THROW(gauss::merge_directions({{2, 0, 0}}, {}, 0.1), std::invalid_argument);
 }
 
-// The input families of issue 14: spread, clustered (noisy copies of a few directions), a mesh's face
-// normals, degenerate sets. Meshes come from ../shared/meshes; a missing one skips its family.
+// The input families a style's normals come in: spread, clustered (noisy copies of a few directions), a
+// mesh's face normals, degenerate sets. Meshes come from ../shared/meshes; a missing one skips its family.
 std::vector<Vector3d> noisy_copies(int n, int directions, double noise, unsigned seed) {
   const std::vector<Vector3d> base = random_directions(directions, seed);
   std::mt19937_64 rng(seed + 1);

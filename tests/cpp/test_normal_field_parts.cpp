@@ -1,4 +1,4 @@
-// The parts NormalField is built from (issue 14, item 2): the geodesic lattice, the grid of nodes
+// The parts NormalField is built from: the geodesic lattice, the grid of nodes
 // within reach, and the Schwarz-preconditioned solve of the regularized Eq. 10.
 #include <gtest/gtest.h>
 

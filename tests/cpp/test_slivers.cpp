@@ -1,4 +1,4 @@
-// Slivers (issue 14, item 3): meshes with angles near 0 or 180 degrees (n-gon caps with collinear
+// Slivers: meshes with angles near 0 or 180 degrees (n-gon caps with collinear
 // sides fanned into zero-area and long thin triangles, filled holes, near-collinear points next to good
 // triangles) stylize to bounded results however long the run, and well-shaped meshes keep their exact
 // cotangent weights (so their results are unchanged).

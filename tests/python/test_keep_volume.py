@@ -1,4 +1,4 @@
-"""Keep Volume through gauss_core (issue 10): Solver.keep_volume."""
+"""Keep Volume through gauss_core: Solver.keep_volume."""
 import numpy as np
 import pytest
 

@@ -1,4 +1,4 @@
-"""Many custom normals (issue 14, item 2) through the module: merge_directions, a 100,000-normal style,
+"""Many custom normals through the module: merge_directions, a 100,000-normal style,
 the size limit refused before any copy."""
 import time
 

@@ -1,4 +1,4 @@
-"""Moving pins without re-factoring (issue 9, section 1): Solver.set_pin_positions, Solver.pinned and
+"""Moving pins without re-factoring: Solver.set_pin_positions, Solver.pinned and
 Solver.pin_positions, as the add-on's handle dragging uses them."""
 import numpy as np
 import pytest

@@ -1,4 +1,4 @@
-"""Robustness of the gauss_core API (issue 5): every bad input raises ValueError or TypeError with a
+"""Robustness of the gauss_core API: every bad input raises ValueError or TypeError with a
 message that says what is wrong, and nothing crashes; odd but valid inputs (lists, non-contiguous or
 Fortran-ordered arrays, other dtypes) give the same result as clean ones; broken meshes come out finite
 with nothing lost; a refused call leaves the solver as it was.
