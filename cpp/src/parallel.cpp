@@ -4,6 +4,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdlib>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -85,12 +86,20 @@ class Pool {
         worker.wake.notify_one();
       }
     }
-    fn(context, 0, chunks);
+    call(fn, context, 0, chunks);
     if (!spin_until([&] { return remaining_.load(std::memory_order_acquire) == 0; })) {
       std::unique_lock<std::mutex> lock(done_mutex_);
       done_.wait(lock, [&] { return remaining_.load(std::memory_order_acquire) == 0; });
     }
+    // Every chunk has ended (the context lives on the caller's stack), so the job's first exception,
+    // if any, can be rethrown here.
+    std::exception_ptr error;
+    {
+      std::lock_guard<std::mutex> lock(error_mutex_);
+      error.swap(error_);
+    }
     busy_.store(false, std::memory_order_release);
+    if (error) std::rethrow_exception(error);
   }
 
  private:
@@ -115,11 +124,22 @@ class Pool {
         self.sleeping.store(false, std::memory_order_relaxed);
       }
       seen = self.ticket.load(std::memory_order_acquire);
-      fn_(context_, index + 1, chunks_);
+      call(fn_, context_, index + 1, chunks_);
       if (remaining_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
         { std::lock_guard<std::mutex> lock(done_mutex_); }
         done_.notify_one();
       }
+    }
+  }
+
+  // Runs one chunk; an exception is kept for run() to rethrow (the first one wins), never let out of a
+  // worker thread, where it would end the process.
+  void call(detail::ChunkFn fn, void* context, int chunk, int chunks) noexcept {
+    try {
+      fn(context, chunk, chunks);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(error_mutex_);
+      if (!error_) error_ = std::current_exception();
     }
   }
 
@@ -131,6 +151,8 @@ class Pool {
   std::atomic<int> remaining_{0};
   std::mutex done_mutex_;
   std::condition_variable done_;
+  std::mutex error_mutex_;
+  std::exception_ptr error_;  // the running job's first exception
 };
 
 Pool& pool() {

@@ -1,6 +1,6 @@
 // The solver's thread pool (parallel.h): every index visited exactly once for any range, threshold and
 // thread count; task t on thread t % threads; loops nested or started from two threads at once still
-// run whole; and per-element results the same for any thread count.
+// run whole; per-element results the same for any thread count; an exception reaches the caller.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -175,4 +176,46 @@ TEST(Parallel, ScopedThreadsIsCappedAndRestored) {
   EXPECT_EQ(gauss::parallel::current_threads(), 3);
   gauss::parallel::set_max_threads(1000);
   EXPECT_EQ(gauss::parallel::max_threads(), 256);
+}
+
+// A throw in any chunk (a worker's or the caller's) reaches the loop's caller once every chunk has
+// ended, the other chunks still run, and the pool takes the next loop as before.
+TEST(Parallel, AnExceptionInAnyChunkReachesTheCallerAndThePoolStaysUsable) {
+  ScopedMaxThreads max(4);
+  const int n = 40000;
+  for (int threads : kThreadCounts) {
+    gauss::parallel::ScopedThreads scoped(threads);
+    for (int thrower : {0, n / 2, n - 1}) {  // in the caller's chunk (0), a worker's, the last worker's
+      std::vector<std::atomic<int>> hits(n);
+      for (auto& h : hits) h = 0;
+      std::string message;
+      try {
+        gauss::parallel::for_each(n, 0, [&](int i) {
+          if (i == thrower) throw std::runtime_error("element " + std::to_string(i));
+          ++hits[i];
+        });
+      } catch (const std::runtime_error& e) {
+        message = e.what();
+      }
+      EXPECT_EQ(message, "element " + std::to_string(thrower)) << threads << " threads";
+      // Every other chunk ran to its end (chunks as for_ranges cuts them).
+      const int chunks = gauss::parallel::current_threads();
+      const int own = static_cast<int>(static_cast<int64_t>(thrower) * chunks / n);
+      for (int c = 0; c < chunks; ++c) {
+        if (c == own) continue;
+        for (int64_t i = int64_t{n} * c / chunks; i < int64_t{n} * (c + 1) / chunks; ++i)
+          ASSERT_EQ(hits[i].load(), 1) << "index " << i << ", " << threads << " threads";
+      }
+      EXPECT_EQ(hits[thrower].load(), 0);
+
+      std::vector<std::atomic<int>> again(n);
+      for (auto& h : again) h = 0;
+      gauss::parallel::for_each(n, 0, [&](int i) { ++again[i]; });
+      for (int i = 0; i < n; ++i) ASSERT_EQ(again[i].load(), 1) << "index " << i << ", " << threads << " threads";
+    }
+  }
+  // Tasks too, where every task throws: one exception comes out.
+  gauss::parallel::ScopedThreads scoped(4);
+  EXPECT_THROW(gauss::parallel::for_tasks(4, true, [](int t) { throw std::out_of_range(std::to_string(t)); }),
+               std::out_of_range);
 }

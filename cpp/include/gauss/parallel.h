@@ -15,7 +15,11 @@
 //
 // Re-entrancy: one caller at a time uses the pool. A loop started while the pool is busy (another
 // thread's solver, or a loop nested inside a loop body) runs serially on its caller, with the same
-// result. Loop bodies must not throw.
+// result.
+//
+// Exceptions: a loop body that throws (an out-of-memory, a cancelled set-up) ends its own chunk; the
+// other chunks run to their end, then the loop rethrows the first exception on its caller. Which
+// elements of the loop were computed is then unspecified.
 #include <algorithm>
 #include <cstdint>
 
