@@ -21,9 +21,9 @@ esac
 bash scripts/install_deps.sh || exit 1
 bash scripts/build.sh build || exit 1
 
-# C++ cases that take seconds each (long runs to convergence or to 300+ steps on the larger meshes); the
-# fast tier leaves them to the full run.
-SLOW_CPP_TESTS='Slivers\.WatertightBunny|Acceleration\.TheCubicMethodKeepsRho|NormalFieldFamily\.ReachesTheTolerance'
+# C++ cases that take seconds each (long runs to convergence or to 300+ steps on the larger meshes, the
+# fill of orderings on subdivided meshes); the fast tier leaves them to the full run.
+SLOW_CPP_TESTS='Slivers\.WatertightBunny|Acceleration\.TheCubicMethodKeepsRho|NormalFieldFamily\.ReachesTheTolerance|NestedDissectionFill\.'
 
 results=()
 failed=0
