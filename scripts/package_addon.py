@@ -40,13 +40,13 @@ import glob
 import os
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
 import tomllib
 import zipfile
 
 import blender_ext_tool  # scripts/blender_ext_tool.py: Blender's own extension build/validate tool
+import verify_addon_install  # scripts/verify_addon_install.py: the --verify-install check
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SOURCE = os.path.join(REPO, "python_addon", "gauss_stylization")
@@ -318,64 +318,6 @@ def write_classic(out_dir, version, tag, python, classic_range, addon_min, extra
     return path
 
 
-VERIFY_SCRIPT = r'''
-import sys, bpy, addon_utils
-zip_path = sys.argv[sys.argv.index("--") + 1]
-print("blender python %d.%d" % sys.version_info[:2])
-bpy.ops.preferences.addon_install(filepath=zip_path)
-bpy.ops.preferences.addon_enable(module="gauss_stylization")
-loaded, enabled = addon_utils.check("gauss_stylization")
-assert loaded and enabled, "add-on not enabled"
-import gauss_stylization
-print("installed at", gauss_stylization.__file__)
-gauss_stylization.native.core()  # raises the add-on's readable error if the .so does not load
-bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=3)
-result = bpy.ops.object.gauss_stylize(iterations=20)
-assert result == {"FINISHED"}, result
-print("VERIFY OK: installed, enabled and stylized with", gauss_stylization.bl_info["name"],
-      gauss_stylization.bl_info["version"])
-'''
-
-
-def path_without_this_python():
-    """PATH without the folder of the interpreter running this script, unless it is the system's.
-
-    Debian's Blender runs the system Python but takes its prefix from the first `python3` on
-    PATH; run from e.g. a pyenv Python, it would get that Python's library (without numpy).
-    """
-    own = os.path.dirname(os.path.realpath(sys.executable))
-    parts = os.environ.get("PATH", "").split(os.pathsep)
-    if own in ("/usr/bin", "/bin"):
-        return os.pathsep.join(parts)
-    return os.pathsep.join(p for p in parts if os.path.realpath(p) != own)
-
-
-def verify_install(zip_path, python):
-    blender = os.environ.get("BLENDER", "blender")
-    with tempfile.TemporaryDirectory(prefix="gauss_verify_") as home:
-        env = dict(os.environ,
-                   BLENDER_USER_CONFIG=os.path.join(home, "config"),
-                   BLENDER_USER_SCRIPTS=os.path.join(home, "scripts"),
-                   PATH=path_without_this_python())
-        script = os.path.join(home, "verify.py")
-        with open(script, "w", encoding="utf-8") as handle:
-            handle.write(VERIFY_SCRIPT)
-        command = [blender, "-b", "--factory-startup", "--python-exit-code", "1", "-P", script, "--", zip_path]
-        result = subprocess.run(command, env=env, capture_output=True, text=True)
-        installed = os.path.join(home, "scripts", "addons", PACKAGE, "__init__.py")
-        ok = result.returncode == 0 and "VERIFY OK" in result.stdout and os.path.isfile(installed)
-        print("\n".join(line for line in result.stdout.splitlines()
-                        if line.startswith(("blender python", "installed at", "VERIFY"))))
-        if not ok:
-            sys.stderr.write(result.stdout[-3000:] + result.stderr[-3000:])
-            blender_python = re.search(r"^blender python (\S+)$", result.stdout, re.M)
-            if blender_python and blender_python.group(1) != python:
-                fail("this Blender runs Python %s but the module was built for Python %s: rebuild with "
-                     "cmake -DPython_EXECUTABLE=<a python%s> (see README)"
-                     % (blender_python.group(1), python, blender_python.group(1)))
-            fail("install check failed (blender exit code %d)" % result.returncode)
-
-
 def release_table(version, addon_min):
     """Markdown rows: which Blender gets which zip, derived from BLENDER_FOR_PYTHON and PLATFORMS (for the
     README; `package_addon.py --table` prints them)."""
@@ -453,7 +395,10 @@ def main():
     if args.verify_install:
         if to_verify is None:
             fail("--verify-install needs a linux-x64 wheel for Python %s" % this_python)
-        verify_install(to_verify, this_python)
+        try:
+            verify_addon_install.verify_install(to_verify, this_python, PACKAGE)
+        except verify_addon_install.InstallCheckFailed as exc:
+            fail(str(exc))
 
 
 if __name__ == "__main__":
