@@ -2,9 +2,9 @@
 // gauss_core.Solver's run control: stepping until converged, the read-outs that say how far a run is,
 // what a step does besides Algorithm 1 (keep_volume, acceleration) and setting the current vertices
 // (a warm start).
-// Kept apart from module.cpp (the other bindings), which adds these to its Solver class with
-// bind_iteration(). SolverWrapper: module.cpp's Solver (core(): the GaussSolver, mutex(): held around
-// every use of it).
+// Kept apart from solver_bindings.cpp, which adds these to its Solver class with bind_iteration().
+// SolverWrapper: solver_bindings.cpp's Solver (core(): the GaussSolver, mutex(): held around every use
+// of it).
 #include <pybind11/pybind11.h>
 
 #include <mutex>
