@@ -211,14 +211,14 @@ def text_width(text, context=None):
 
 
 def _pieces(word, width, measure):
-    """A word wider than ``width`` (a file path) in pieces that fit, cut after a '/' or '\\'
-    where one is near, else wherever it must be."""
+    """A word wider than ``width`` (a file path, an object name) in pieces that fit, cut after a
+    '/', '\\' or '_' where one is near, else wherever it must be."""
     pieces = []
     while measure(word) > width and len(word) > 1:
         cut = len(word) - 1
         while cut > 1 and measure(word[:cut]) > width:
             cut -= 1
-        separator = max(word.rfind("/", 0, cut), word.rfind("\\", 0, cut))
+        separator = max(word.rfind(mark, 0, cut) for mark in "/\\_")
         cut = separator + 1 if separator >= cut // 2 else cut
         pieces.append(word[:cut])
         word = word[cut:]

@@ -77,6 +77,8 @@ def test_wrapping_breaks_between_words_and_keeps_every_word(addon):
     assert wrap("Writes /tmp/folder/a_long_file_name.pc2", 12, len) == [
         "Writes", "/tmp/folder/", "a_long_file_", "name.pc2"]
     assert wrap("a b c", 3, len) == ["a b", "c"]
+    # An object name too long for a line is cut after an underscore, not inside a number.
+    assert wrap("spot_triangulated_2930: step 5", 20, len) == ["spot_triangulated_", "2930: step 5"]
 
 
 def test_a_custom_normal_is_one_row_with_its_number_and_x_y_z(addon):
