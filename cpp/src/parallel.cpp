@@ -96,7 +96,8 @@ class Pool {
     std::exception_ptr error;
     {
       std::lock_guard<std::mutex> lock(error_mutex_);
-      error.swap(error_);
+      error = error_;  // (no exception_ptr::swap in libc++)
+      error_ = nullptr;
     }
     busy_.store(false, std::memory_order_release);
     if (error) std::rethrow_exception(error);
