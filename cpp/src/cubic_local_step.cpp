@@ -92,7 +92,7 @@ void CubicLocalStep::reset() {
   for (size_t v = 0; v < normal_.size(); ++v) {
     carried_[2 * v] = frames_[frame_[v]].transpose() * normal_[v];
     carried_[2 * v + 1].setZero();
-    rho_[v] = cubic_admm::kRhoInit;
+    rho_[v] = area_[v] > 0 ? std::min(cubic_admm::kRhoPerArea * area_[v], cubic_admm::kRhoInit) : cubic_admm::kRhoInit;
     iterations_[v] = 0;
   }
 }
