@@ -15,7 +15,7 @@ cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGAUSS_SANITIZE=
 cmake --build "$build" --target gauss_tests -j "$jobs"
 
 # Every report is fatal (the build adds -fno-sanitize-recover=all; ASan and LSan abort or exit non-zero
-# on their own). The thread pool (cpp/src/parallel.cpp) is reachable from a global, so LSan has
+# on their own). The thread pool (cpp/src/util/parallel.cpp) is reachable from a global, so LSan has
 # nothing to report about it.
 export OMP_NUM_THREADS=2
 export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1:strict_string_checks=1"

@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "gauss/alignment_share.h"
-#include "gauss/gauss_solver.h"
-#include "gauss/mesh_io.h"
-#include "gauss/parallel.h"
-#include "gauss/presets.h"
+#include "gauss/mesh/alignment_share.h"
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/mesh/mesh_io.h"
+#include "gauss/util/parallel.h"
+#include "gauss/style/presets.h"
 #include "gauss/settings.h"
 
 namespace {

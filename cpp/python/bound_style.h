@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "gauss/preference_function.h"
+#include "gauss/style/preference_function.h"
 
 namespace gauss_python {
 

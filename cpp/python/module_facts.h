@@ -8,8 +8,8 @@
 #include <iterator>
 #include <string>
 
-#include "gauss/gauss_solver.h"
-#include "gauss/presets.h"
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/style/presets.h"
 #include "gauss/settings.h"
 
 namespace gauss_python {

@@ -8,9 +8,9 @@
 #include <sstream>
 #include <string>
 
-#include "gauss/memory_budget.h"
-#include "gauss/parallel.h"
-#include "gauss/progress.h"
+#include "gauss/util/memory_budget.h"
+#include "gauss/util/parallel.h"
+#include "gauss/util/progress.h"
 #include "module_parts.h"
 
 namespace gauss_python {

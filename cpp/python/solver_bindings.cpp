@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "bound_style.h"
-#include "gauss/gauss_solver.h"
-#include "gauss/memory_budget.h"
-#include "gauss/progress.h"
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/util/memory_budget.h"
+#include "gauss/util/progress.h"
 #include "gauss/settings.h"
 #include "iteration_bindings.h"
 #include "module_facts.h"

@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "bound_style.h"
-#include "gauss/direction_merge.h"
-#include "gauss/normal_field.h"
-#include "gauss/presets.h"
+#include "gauss/style/direction_merge.h"
+#include "gauss/style/normal_field.h"
+#include "gauss/style/presets.h"
 #include "gauss/settings.h"
 #include "module_parts.h"
 #include "numpy_arrays.h"

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-#include "gauss/presets.h"
+#include "gauss/style/presets.h"
 #include "gauss/settings.h"
 
 namespace {

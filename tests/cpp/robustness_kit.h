@@ -14,11 +14,11 @@
 #include <map>
 #include <vector>
 
-#include "gauss/alignment_share.h"
-#include "gauss/gauss_solver.h"
-#include "gauss/mesh_io.h"
-#include "gauss/preference_function.h"
-#include "gauss/presets.h"
+#include "gauss/mesh/alignment_share.h"
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/mesh/mesh_io.h"
+#include "gauss/style/preference_function.h"
+#include "gauss/style/presets.h"
 
 namespace robustness_kit {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <string>
 
-#include "gauss/gauss_solver.h"
+#include "gauss/solver/gauss_solver.h"
 #include "test_expect.h"
 #include "test_meshes.h"
 

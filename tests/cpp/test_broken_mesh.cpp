@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "gauss/gauss_solver.h"
-#include "gauss/mesh_io.h"
-#include "gauss/preference_function.h"
-#include "gauss/presets.h"
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/mesh/mesh_io.h"
+#include "gauss/style/preference_function.h"
+#include "gauss/style/presets.h"
 #include "robustness_kit.h"
 #include "test_expect.h"
 

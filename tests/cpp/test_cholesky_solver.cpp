@@ -12,10 +12,10 @@
 #include <random>
 #include <thread>
 
-#include "gauss/cholesky_solver.h"
-#include "gauss/memory_budget.h"
-#include "gauss/mesh_topology.h"
-#include "gauss/parallel.h"
+#include "gauss/sparse/cholesky_solver.h"
+#include "gauss/util/memory_budget.h"
+#include "gauss/mesh/mesh_topology.h"
+#include "gauss/util/parallel.h"
 #include "scoped_env.h"
 #include "test_meshes.h"
 

@@ -3,7 +3,7 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "gauss/closest_rotation.h"
+#include "gauss/solver/closest_rotation.h"
 
 using Eigen::Matrix3d;
 

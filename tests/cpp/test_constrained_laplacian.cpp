@@ -7,10 +7,10 @@
 #include <random>
 #include <stdexcept>
 
-#include "gauss/constrained_laplacian.h"
-#include "gauss/gauss_solver.h"
-#include "gauss/mesh_topology.h"
-#include "gauss/presets.h"
+#include "gauss/solver/constrained_laplacian.h"
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/mesh/mesh_topology.h"
+#include "gauss/style/presets.h"
 #include "test_expect.h"
 #include "test_meshes.h"
 

@@ -6,9 +6,9 @@
 #include <functional>
 #include <vector>
 
-#include "gauss/fixed_point_iteration.h"
-#include "gauss/gauss_solver.h"
-#include "gauss/presets.h"
+#include "gauss/solver/fixed_point_iteration.h"
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/style/presets.h"
 #include "gauss/settings.h"
 #include "test_expect.h"
 #include "test_meshes.h"

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "gauss/cotangent_weights.h"
-#include "gauss/cubic_local_step.h"
-#include "gauss/mesh_topology.h"
-#include "gauss/parallel.h"
+#include "gauss/solver/cotangent_weights.h"
+#include "gauss/solver/cubic_local_step.h"
+#include "gauss/mesh/mesh_topology.h"
+#include "gauss/util/parallel.h"
 #include "test_meshes.h"
 
 namespace {

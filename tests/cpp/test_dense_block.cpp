@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "gauss/dense_block.h"
-#include "gauss/parallel.h"
+#include "gauss/sparse/dense_block.h"
+#include "gauss/util/parallel.h"
 
 namespace {
 

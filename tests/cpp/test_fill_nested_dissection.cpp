@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "gauss/elimination_tree.h"
-#include "gauss/mesh_io.h"
-#include "gauss/mesh_topology.h"
-#include "gauss/nested_dissection.h"
+#include "gauss/sparse/elimination_tree.h"
+#include "gauss/mesh/mesh_io.h"
+#include "gauss/mesh/mesh_topology.h"
+#include "gauss/sparse/nested_dissection.h"
 #include "test_meshes.h"
 
 namespace {

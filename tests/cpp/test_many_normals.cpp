@@ -14,11 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "gauss/direction_merge.h"
-#include "gauss/mesh_io.h"
-#include "gauss/normal_field.h"
-#include "gauss/parallel.h"
-#include "gauss/preference_function.h"
+#include "gauss/style/direction_merge.h"
+#include "gauss/mesh/mesh_io.h"
+#include "gauss/style/normal_field.h"
+#include "gauss/util/parallel.h"
+#include "gauss/style/preference_function.h"
 #include "gauss/settings.h"
 #include "test_directions.h"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "gauss/mesh_io.h"
+#include "gauss/mesh/mesh_io.h"
 
 namespace gauss_test {
 

@@ -8,10 +8,10 @@
 #include <random>
 #include <vector>
 
-#include "gauss/kernel_system.h"
-#include "gauss/node_grid.h"
-#include "gauss/parallel.h"
-#include "gauss/sphere_lattice.h"
+#include "gauss/style/kernel_system.h"
+#include "gauss/style/node_grid.h"
+#include "gauss/util/parallel.h"
+#include "gauss/style/sphere_lattice.h"
 #include "test_directions.h"
 
 namespace {

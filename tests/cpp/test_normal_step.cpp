@@ -7,8 +7,8 @@
 #include <random>
 #include <string>
 
-#include "gauss/normal_step.h"
-#include "gauss/presets.h"
+#include "gauss/solver/normal_step.h"
+#include "gauss/style/presets.h"
 #include "gauss/settings.h"
 
 using gauss::newton_normal;

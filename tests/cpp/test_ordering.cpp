@@ -6,10 +6,10 @@
 #include <random>
 #include <set>
 
-#include "gauss/elimination_tree.h"
-#include "gauss/graph_bisection.h"
-#include "gauss/mesh_topology.h"
-#include "gauss/nested_dissection.h"
+#include "gauss/sparse/elimination_tree.h"
+#include "gauss/sparse/graph_bisection.h"
+#include "gauss/mesh/mesh_topology.h"
+#include "gauss/sparse/nested_dissection.h"
 #include "test_meshes.h"
 
 namespace {

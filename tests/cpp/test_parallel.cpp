@@ -14,7 +14,7 @@
 #include <thread>
 #include <vector>
 
-#include "gauss/parallel.h"
+#include "gauss/util/parallel.h"
 
 namespace {
 

@@ -3,8 +3,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "gauss/preference_function.h"
-#include "gauss/presets.h"
+#include "gauss/style/preference_function.h"
+#include "gauss/style/presets.h"
 
 using gauss::PreferenceFunction;
 using gauss::preset_names;

@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "gauss/progress.h"
+#include "gauss/util/progress.h"
 
 namespace {
 

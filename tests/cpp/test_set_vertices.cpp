@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "gauss/gauss_solver.h"
+#include "gauss/solver/gauss_solver.h"
 #include "test_expect.h"
 #include "test_meshes.h"
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "gauss/gauss_solver.h"
-#include "gauss/presets.h"
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/style/presets.h"
 #include "gauss/settings.h"
 #include "test_expect.h"
 #include "test_meshes.h"

@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "../fuzz/fuzz_harness.h"
-#include "gauss/alignment_share.h"
-#include "gauss/cotangent_weights.h"
-#include "gauss/gauss_solver.h"
-#include "gauss/mesh_io.h"
-#include "gauss/presets.h"
+#include "gauss/mesh/alignment_share.h"
+#include "gauss/solver/cotangent_weights.h"
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/mesh/mesh_io.h"
+#include "gauss/style/presets.h"
 #include "test_meshes.h"
 
 namespace {

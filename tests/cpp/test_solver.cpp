@@ -4,10 +4,10 @@
 #include <cmath>
 #include <fstream>
 
-#include "gauss/alignment_share.h"
-#include "gauss/gauss_solver.h"
-#include "gauss/parallel.h"
-#include "gauss/presets.h"
+#include "gauss/mesh/alignment_share.h"
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/util/parallel.h"
+#include "gauss/style/presets.h"
 #include "test_meshes.h"
 
 using gauss::GaussSolver;

@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "gauss/spatial_order.h"
+#include "gauss/mesh/spatial_order.h"
 
 namespace {
 

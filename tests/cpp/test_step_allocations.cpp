@@ -8,9 +8,9 @@
 
 #include <Eigen/Geometry>
 
-#include "gauss/cholesky_solver.h"
-#include "gauss/gauss_solver.h"
-#include "gauss/presets.h"
+#include "gauss/sparse/cholesky_solver.h"
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/style/presets.h"
 #include "test_meshes.h"
 
 namespace {

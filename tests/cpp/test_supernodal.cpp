@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "gauss/mesh_topology.h"
-#include "gauss/supernodal_analysis.h"
-#include "gauss/supernodal_factor.h"
+#include "gauss/mesh/mesh_topology.h"
+#include "gauss/sparse/supernodal_analysis.h"
+#include "gauss/sparse/supernodal_factor.h"
 #include "test_meshes.h"
 
 namespace {

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "gauss/memory_budget.h"
-#include "gauss/system_memory.h"
+#include "gauss/util/memory_budget.h"
+#include "gauss/util/system_memory.h"
 #include "scoped_env.h"
 
 namespace {

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <vector>
 
-#include "gauss/gauss_solver.h"
-#include "gauss/mesh_topology.h"
-#include "gauss/volume_keeper.h"
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/mesh/mesh_topology.h"
+#include "gauss/solver/volume_keeper.h"
 #include "test_meshes.h"
 
 using Eigen::Vector3d;

@@ -12,7 +12,7 @@
 
 #include "fuzz_inputs.h"
 #include "fuzz_reader.h"
-#include "gauss/gauss_solver.h"
+#include "gauss/solver/gauss_solver.h"
 
 namespace gauss_fuzz {
 

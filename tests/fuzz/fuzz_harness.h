@@ -28,8 +28,8 @@
 #include "fuzz_contract.h"
 #include "fuzz_inputs.h"
 #include "fuzz_reader.h"
-#include "gauss/gauss_solver.h"
-#include "gauss/preference_function.h"
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/style/preference_function.h"
 
 namespace gauss_fuzz {
 

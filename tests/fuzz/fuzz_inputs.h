@@ -14,8 +14,8 @@
 #include <Eigen/Geometry>
 
 #include "fuzz_reader.h"
-#include "gauss/preference_function.h"
-#include "gauss/presets.h"
+#include "gauss/style/preference_function.h"
+#include "gauss/style/presets.h"
 
 namespace gauss_fuzz {
 

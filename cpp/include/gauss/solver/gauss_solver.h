@@ -1,0 +1,229 @@
+#pragma once
+// Gauss stylization (Kohlbrenner et al. 2021): ARAP extended by -mu * sum_f g(n_f), minimized by
+// Algorithm 1: an ADMM local step on auxiliary face normals n*_f (normal_step.h) and edges e*_ij, the
+// ARAP rotation fit, and a global step against the constrained Laplacian (constrained_laplacian.h),
+// which is factored once per set of pins.
+//
+// Usage (geometry-central style: the constructor does the expensive set-up, methods are cheap):
+//   GaussSolver s(V, nV, F, nF);         // normalize, cotangent weights, topology, factorization
+//   s.set_styles({PreferenceFunction(preset_style("cube"))});
+//   for (...) s.step();                  // no allocation, no sparse look-up, no factorization
+//   s.copy_vertices(out);
+//
+// A second method shares all of that: Cubic Stylization (Liu & Jacobson 2019), whose local step
+// (cubic_local_step.h) replaces the ADMM on normals and edges; set_method() switches between them at
+// any time, without a new set-up.
+//
+// Frames: the solver works on a normalized copy (vertex centroid at the origin, longest bounding-box
+// side 1) so that lambda, sigma and mu mean what they mean in the paper; inputs and outputs are in
+// the caller's frame.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "gauss/solver/constrained_laplacian.h"
+#include "gauss/solver/cubic_local_step.h"
+#include "gauss/solver/fixed_point_iteration.h"
+#include "gauss/mesh/mesh_topology.h"
+#include "gauss/style/preference_function.h"
+#include "gauss/util/progress.h"
+#include "gauss/settings.h"
+#include "gauss/util/thread_tuner.h"
+#include "gauss/solver/volume_keeper.h"
+
+namespace gauss {
+
+// The local step a step runs; the numbers are the positions in settings::method_names.
+enum class Method { gauss = 0, cubic = 1 };
+
+struct StepTimings {  // milliseconds spent in each phase of the last step
+  // faces: initialization with the first ADMM round's normal update; admm: the edge update and any
+  // later rounds; rhs: Eq. 27's right-hand side; solve: the triangular solves and re-centring.
+  // The cubic method: faces = the face covariances, admm = the per-vertex ADMM with its rotations,
+  // rotations = 0.
+  double faces = 0, rotations = 0, admm = 0, rhs = 0, solve = 0;
+  int threads = 1;  // threads the step ran on (see thread_tuner.h and parallel.h)
+};
+
+class GaussSolver {
+ public:
+  // V: num_vertices by 3 row-major coordinates (those of vertices that faces use within
+  // +-settings::max_coordinate); F: num_faces by 3 row-major vertex indices.
+  // pinned: #P distinct vertex indices; pin_positions: #P by 3 targets (nullptr: the rest positions),
+  // within settings::max_pin_distance times the mesh's size of it. lambda: settings::lambda.
+  // progress: optional; reports every SetupPhase (progress.h) and cancels the set-up on request.
+  // Throws std::invalid_argument on bad input (message says what is wrong), OutOfMemory
+  // (memory_budget.h) if the factorization would not fit in memory, Cancelled.
+  GaussSolver(const double* V, int num_vertices, const int64_t* F, int num_faces,
+              const std::vector<int64_t>& pinned = {}, const double* pin_positions = nullptr,
+              double lambda = settings::lambda.default_value, Progress* progress = nullptr);
+
+  // --- Styles: take effect at the next step, never re-factor. ---
+  // Default: one style, default_style() (presets.h), on every face.
+  void set_styles(std::vector<PreferenceFunction> styles);
+  void set_style(int index, PreferenceFunction style);
+  // Per input face: index into the style list, or -1 for an unstyled face (pure ARAP).
+  void set_face_styles(const int64_t* style_of_input_face, int count);
+  int num_styles() const { return static_cast<int>(styles_.size()); }
+
+  // --- Parameters: lambda only scales Eq. 27's right-hand side, so only set_pins() re-factors. ---
+  void set_lambda(double lambda);
+  double lambda() const { return lambda_; }
+  // A new set of pins (as in the constructor); re-factors (progress: SetupPhase::ordering onwards).
+  // The pins move to their targets now. On any exception, Cancelled included, the solver keeps its
+  // previous pins and factor.
+  void set_pins(const std::vector<int64_t>& pinned, const double* pin_positions = nullptr,
+                Progress* progress = nullptr);
+  // New targets for the current pins, without re-factoring: pin_positions is count by 3, in the order
+  // of pinned(), count == #P, each target finite and within settings::max_pin_distance mesh sizes. The pins
+  // move to their targets now; the rest of the mesh follows at the next step. Throws
+  // std::invalid_argument (and changes nothing) otherwise.
+  void set_pin_positions(const double* pin_positions, int count);
+  const std::vector<int64_t>& pinned() const { return pinned_input_; }             // #P, caller's numbering
+  const std::vector<Eigen::Vector3d>& pin_positions() const { return pin_targets_; }  // #P by 3, caller's frame
+  void set_admm_iterations(int n);
+  int admm_iterations() const { return admm_iterations_; }
+  // Keep Volume (settings::keep_volume, volume_keeper.h): after each step, components without a pin
+  // are scaled back to their rest volume (closed) or area (open).
+  void set_keep_volume(bool on);
+  bool keep_volume() const { return keep_volume_; }
+  // Acceleration (settings::acceleration, fixed_point_iteration.h): momentum with adaptive restart,
+  // with each method's settings::Momentum; the cubic method's carried ADMM state is extrapolated with
+  // the vertices. Off: the plain iteration of Algorithm 1. Either way a step ends on a step of the
+  // method's local-global iteration.
+  void set_acceleration(bool on);
+  bool acceleration() const { return iteration_.acceleration(); }
+  const settings::Momentum& momentum() const { return iteration_.momentum(); }  // the method's
+
+  // --- Method: the next step's local step; pins, styles and the factorization stay. ---
+  // The first switch to Method::cubic prepares its per-vertex data (O(#V), no factorization). With it,
+  // a style's mu scales cubic_lambda on its faces and its rotation turns the cube; its preferred
+  // normals, sigma and lambda are not used. A vertex's strength is the mean mu of its faces
+  // (unstyled faces count 0), its orientation that of the style most of its faces have (ties: the
+  // lower style index).
+  void set_method(Method method);
+  Method method() const { return method_; }
+  void set_cubic_lambda(double lambda);  // settings::cubic_lambda
+  double cubic_lambda() const { return cubic_lambda_; }
+
+  // One iteration of the method's local-global step (Algorithm 1 for Gauss), applied at the
+  // momentum point when accelerated, then Keep Volume if it is on.
+  void step();
+  // Steps until a step's reldV is below `tolerance` (settings::tolerance), at most max_steps (>= 0)
+  // times; returns the number of steps taken (0 if converged() already holds for this tolerance).
+  // Sets tolerance() to `tolerance`. Throws std::invalid_argument (before stepping) on a bad argument.
+  int step_until(double tolerance, int max_steps);
+  // Current vertices := rest vertices (pins at their targets); step count := 0.
+  void reset();
+  // Current vertices := V (count by 3, caller's frame and numbering, count == #V): a warm start for
+  // the next step, e.g. the previous frame's result in an animation bake. The rest shape, styles and
+  // factorization stay; pins stay at their targets and vertices no face uses at their input
+  // positions; the step count is kept. What the iteration carried over from earlier steps (the
+  // rotation fit's warm start) is reset as reset() does, so the steps that follow depend on V alone.
+  // Throws std::invalid_argument, changing nothing, unless every coordinate is finite and every vertex
+  // that faces use lies within settings::max_pin_distance times the mesh's size of it.
+  void set_vertices(const double* V, int count);
+
+  // --- Convergence (fixed_point_iteration.h). Every edit above (styles, lambda, ADMM rounds, keep
+  // volume, pins, their targets, reset, set_vertices) changes the map or the iterate, so it makes
+  // last_reldv() +infinity. ---
+  double last_reldv() const { return iteration_.last_reldv(); }  // +infinity before the first step
+  // The tolerance converged() compares with: settings::tolerance (checked), set here or by step_until().
+  void set_tolerance(double tolerance);
+  double tolerance() const { return tolerance_; }
+  bool converged() const { return last_reldv() < tolerance_; }
+
+  // --- Read-outs. ---
+  void copy_vertices(double* out) const;  // #V by 3, caller's frame
+  void copy_vertices(float* out) const;
+  double arap_energy() const;  // E_ARAP of the current mesh with its optimal rotations (normalized frame)
+  double g_energy() const;     // E_g = sum over styled faces of g(n_f)
+  int step_count() const { return step_count_; }
+  int factorization_count() const { return factorization_count_; }
+  int num_vertices() const { return topo_.num_vertices; }
+  int num_input_faces() const { return num_input_faces_; }
+  const StepTimings& last_timings() const { return timings_; }
+  // The cubic method: ADMM iterations of the last step summed over the vertices (0 before one), and
+  // its term sum_i lambda_i ||Q_i^T R_i n_i||_1 with the last step's rotations.
+  long long cubic_admm_iterations() const { return cubic_ready_ ? cubic_.last_admm_iterations() : 0; }
+  double cubic_energy() const { return cubic_ready_ ? cubic_.cubic_energy(cubic_lambda_, rotation_) : 0.0; }
+  long long factor_nonzeros() const { return laplacian_.factor_nonzeros(); }
+
+ private:
+  void compute_rest_quantities();
+  // set_pins' work inside a set-up that `progress` already reports (the constructor's or set_pins').
+  void apply_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress& progress);
+  // One local-global step on X_ (Algorithm 1: local step, then the global solve), timing its phases.
+  void local_global_step();
+  void face_pass();
+  void fit_rotations();  // rotation_ from the covariances in face_scratch_
+  void admm_round(bool first_round);
+  // Eq. 27's right-hand side from rotation_; with_edges adds the Gauss method's lambda w e* terms.
+  void assemble_rhs(bool with_edges);
+  // The cubic method's per-vertex strength and orientation from styles_ and face_style_.
+  void update_cubic_styles();
+  // The targets (caller's frame) of the given pins (#P, caller's numbering) from #P by 3 positions
+  // (nullptr: the rest positions); throws unless the pins are distinct vertices and every target is
+  // finite and within settings::max_pin_distance times the mesh's size of it.
+  std::vector<Eigen::Vector3d> checked_pin_targets(const std::vector<int64_t>& pinned, const double* positions) const;
+  std::vector<Eigen::Vector3d> to_solver_frame(const std::vector<Eigen::Vector3d>& caller) const;
+  Eigen::Vector3d to_caller(const Eigen::Vector3d& x) const { return x * scale_ + center_; }
+  template <typename T>
+  void write_vertices(T* out) const;
+
+  // Internally vertices and faces are renumbered for locality (spatial_order.h); every array
+  // below is in that numbering, the public interface in the caller's.
+  std::vector<int> new_of_old_;
+  MeshTopology topo_;
+  int num_input_faces_ = 0;
+  std::vector<Eigen::Vector3d> input_;  // caller's coordinates, returned verbatim for fixed vertices
+  Eigen::Vector3d center_;
+  double scale_ = 1.0;
+  std::vector<Eigen::Vector3d> rest_, X_;  // normalized frame
+
+  // Rest quantities.
+  std::vector<std::array<double, 3>> slot_weight_;    // #F by 3: cot(opposite angle) / 2
+  std::vector<std::array<Eigen::Vector3d, 3>> slot_rest_;  // #F by 3: weight * rest edge vector
+  std::vector<double> edge_weight_;                  // #E: sum of the slot weights of the edge
+  std::vector<std::array<double, 3>> slot_edge_weight_;  // #F by 3: edge_weight_ of each slot (locality)
+
+  // Styles.
+  std::vector<PreferenceFunction> styles_;
+  std::vector<int> face_style_;  // #F (solver faces), -1 = unstyled
+
+  // Parameters, constraints and the global step's system.
+  double lambda_ = settings::lambda.default_value;
+  int admm_iterations_ = static_cast<int>(settings::admm_iterations.default_value);
+  Method method_ = Method::gauss;
+  double cubic_lambda_ = settings::cubic_lambda.default_value;
+  CubicLocalStep cubic_;      // prepared by the first set_method(Method::cubic)
+  bool cubic_ready_ = false;
+  std::vector<int64_t> pinned_input_;                // caller's numbering
+  std::vector<Eigen::Vector3d> pin_targets_;         // caller's frame (returned verbatim)
+  ConstrainedLaplacian laplacian_;                   // internal numbering, normalized frame
+  int factorization_count_ = 0;
+  VolumeKeeper volume_;                              // rest sizes of the components without a pin
+  bool keep_volume_ = settings::keep_volume.default_value;
+
+  // Per-step buffers (allocated once).
+  std::vector<Eigen::Vector3d> normal_star_;                 // #F
+  std::vector<std::array<double, 3>> dual_;                  // #F by 3 (u_fij, w.r.t. lo->hi edges)
+  std::vector<double> face_mu_;                              // #F: mu, 0 if unstyled or degenerate
+  std::vector<Eigen::Vector3d> edge_star_;                   // #E (lo -> hi)
+  std::vector<Eigen::Matrix3d> rotation_;                    // #V
+  std::vector<Eigen::Quaterniond> rotation_q_;               // #V: warm start of the rotation fit
+  // #F, for two phases of a step that never overlap: first each face's ARAP covariance
+  // sum_k w e_k ehat_k^T (face_pass() or the cubic method's, read by the rotation fit), then the
+  // right-hand sides of its corners, corner k in column k (assemble_rhs()). One array for both saves
+  // 72 bytes a face (72 MB on the 1M-face mesh of scripts/measure_scale.sh).
+  std::vector<Eigen::Matrix3d> face_scratch_;
+  StepTimings timings_;
+  ThreadTuner tuner_;
+  int step_count_ = 0;
+  FixedPointIteration iteration_;  // reldV and the acceleration
+  double tolerance_ = settings::tolerance.default_value;
+};
+
+}  // namespace gauss

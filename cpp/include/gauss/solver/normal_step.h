@@ -1,0 +1,29 @@
+#pragma once
+// The per-face normal update of Algorithm 1's ADMM round (paper Eqs. 17-22), and the symmetric 3x3
+// solve it and the edge update (Eq. 24) share. Pure functions of their arguments: no allocation, safe
+// to call from many threads at once.
+#include <Eigen/Core>
+
+#include "gauss/style/preference_function.h"
+
+namespace gauss {
+
+// Solves H x = b for a symmetric 3 by 3 H (by cofactors).
+//   H  3 by 3 symmetric;  b  3;  x  3 (output, written only on success)
+// Returns false, leaving x unspecified, if H is numerically singular (|det H| <= 1e-12 max|H_ij|^3),
+// holds NaN or infinity, or the solution is not finite.
+bool solve_symmetric3(const Eigen::Matrix3d& H, const Eigen::Vector3d& b, Eigen::Vector3d& x);
+
+// One Newton update of a face's auxiliary normal n* for
+//   L_n(n) = -g(n) + sum_k lw_k / 2 (u_k + n . es_k)^2   over unit n   (Eq. 18),
+// projected onto the tangent plane at n and normalized (Eq. 22). When the Newton direction is not
+// defined, only rescales n, or points uphill, a projected gradient step of size 0.1 is taken instead
+// (the paper's fallback).
+//   style  g (Eqs. 9-15);  n  3, unit: the current n*
+//   es  3 by 3: the face's three auxiliary edges e*_ij;  lw  3: lambda * w_ij of each
+//   u   3: the scaled duals u_fij
+// Returns the new unit normal (n itself if the update is not finite).
+Eigen::Vector3d newton_normal(const PreferenceFunction& style, const Eigen::Vector3d& n, const Eigen::Vector3d* es,
+                              const double* lw, const double* u);
+
+}  // namespace gauss

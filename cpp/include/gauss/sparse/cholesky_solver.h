@@ -1,0 +1,69 @@
+#pragma once
+// Sparse Cholesky factorization A = L L^T of the (constant) global-step matrix, with a solve that
+// carries all three coordinate columns through one forward and one backward sweep, so L is streamed
+// from memory twice per step instead of six times (that is what bounds the global step on big meshes).
+//
+// factor() = nested-dissection ordering (nested_dissection.h) + supernodal symbolic analysis
+// (supernodal_analysis.h) + a check that the factor fits in the memory the machine has
+// (memory_budget.h) + the numeric supernodal factorization (supernodal_factor.h). L stays in its
+// supernodal blocks: below a supernode's dense diagonal block every row of L is a contiguous run of
+// values, so the sweeps read L with no index per entry.
+//
+// Threads: the elimination tree is always cut into two groups of subtrees (kFactorParts) plus the
+// rows above the cut, whatever the number of threads (the cut decides the numbering and with it the
+// rounding). The two groups are factored and swept in parallel, the rows above the cut after them
+// (their big dense blocks tile by tile, the tiling fixed by the block sizes), so results are
+// bit-identical for any thread count. Eigen blocks its dense products by the cache sizes it detects,
+// so a machine with other caches may round differently.
+#include <Eigen/SparseCore>
+#include <memory>
+#include <vector>
+
+#include "gauss/util/progress.h"
+
+namespace gauss {
+
+class CholeskySolver {
+ public:
+  // A: symmetric positive definite n by n (only the lower triangle is read). Taken by value and freed
+  // once the symbolic analysis holds its own copy, before the numeric factorization allocates the
+  // factor: a caller that has no further use for A moves it in, and the set-up's peak has one copy.
+  // progress: receives SetupPhase::ordering .. factorizing (started and finished here unless the
+  //   caller already started it); cancel() makes factor() throw Cancelled.
+  // Throws std::runtime_error if A is not numerically positive definite, OutOfMemory (memory_budget.h)
+  // if the factor would not fit in the available memory, Cancelled. On any exception the solver keeps
+  // its previous factor, unchanged.
+  void factor(Eigen::SparseMatrix<double> A, Progress* progress = nullptr);
+  // Solves A X = B in place; B: n by 3, row-major (x, y, z of one unknown adjacent), in elimination
+  // order: row position(i) holds unknown i (callers assemble B in that order, which saves two
+  // permuting passes). No allocation happens here; one solve at a time per solver.
+  void solve_ordered_in_place(double* Y) const;
+  int position(int i) const { return new_of_old_[i]; }
+  int size() const { return n_; }
+  // Values of L stored: its lower triangle, diagonal included, plus the few explicit zeros that
+  // relaxed supernodes add.
+  long long factor_nonzeros() const { return nonzeros_; }
+
+ private:
+  void forward(int first_super, int last_super, double* y, double* top_sums) const;
+  void backward(int first_super, int last_super, double* y) const;
+
+  int n_ = 0;
+  long long nonzeros_ = 0;
+  std::vector<int> new_of_old_;  // unknown -> row in elimination order
+  // Supernode s: columns [col_start_[s], col_start_[s+1]), rows rows_[row_start_[s] ..], block (L's
+  // rows by columns, transposed: w by m, column-major) at values_[value_start_[s]]. See
+  // supernodal_analysis.h.
+  std::vector<int> col_start_, row_start_, rows_;
+  std::vector<int64_t> value_start_;
+  std::unique_ptr<double[]> values_;
+  std::vector<double> inv_diag_;  // 1 / L(j, j)
+  // Supernodes of part t: [part_start_[t], part_start_[t+1]); the top: [part_start_.back(), #S).
+  std::vector<int> part_start_;
+  int top_col_ = 0;  // first row above the cut
+  // Per part, the sums its forward sweep owes the rows above the cut (3 per row), added to those rows
+  // in part order once both parts are done. Zero between solves.
+  mutable std::vector<double> top_sums_;
+};
+
+}  // namespace gauss

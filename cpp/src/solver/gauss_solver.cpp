@@ -1,0 +1,354 @@
+#include "gauss/solver/gauss_solver.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "gauss/solver/closest_rotation.h"
+#include "gauss/solver/cotangent_weights.h"
+#include "gauss/util/memory_budget.h"
+#include "gauss/solver/normal_step.h"
+#include "gauss/util/parallel.h"
+#include "gauss/style/presets.h"
+#include "gauss/settings.h"
+#include "gauss/mesh/spatial_order.h"
+
+namespace gauss {
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+using Clock = std::chrono::steady_clock;
+
+// Memory the solver keeps per face (topology, rest quantities, ADMM buffers, edges) and per vertex,
+// rounded down from its members' sizes, for the early memory check. Per face, counting 1.5 edges a
+// face: topology 73 bytes, rest quantities 132, styles 4, step buffers 164 (373 in all); per vertex:
+// numbering and topology 12, positions 72, rotations 104, the iteration's 81, the constrained
+// system's 56 (325; the factor is checked on its own).
+constexpr int64_t kSetupBytesPerFace = 360, kSetupBytesPerVertex = 320;
+
+double ms_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+}  // namespace
+
+GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, int num_faces,
+                         const std::vector<int64_t>& pinned, const double* pin_positions,
+                         double lambda, Progress* watcher) {
+  Progress unwatched;
+  Progress& progress = watcher ? *watcher : unwatched;
+  progress.start(SetupPhase::topology);
+  if (num_vertices <= 0) throw std::invalid_argument("the mesh has no vertices");
+  if (num_faces <= 0) throw std::invalid_argument("the mesh has no faces");
+  settings::lambda.check(lambda);
+  // The per-face and per-vertex arrays alone (a lower bound; the factor is checked once its size is
+  // known): a mesh far too big for the machine is refused before anything is allocated.
+  check_memory(kSetupBytesPerFace * int64_t{num_faces} + kSetupBytesPerVertex * int64_t{num_vertices},
+               "a mesh of " + std::to_string(num_vertices) + " vertices and " + std::to_string(num_faces) + " faces");
+  for (int i = 0; i < 3 * num_vertices; ++i)
+    if (!std::isfinite(V[i])) {
+      std::ostringstream msg;
+      msg << "vertex " << i / 3 << " has a NaN or infinite coordinate";
+      throw std::invalid_argument(msg.str());
+    }
+  for (int i = 0; i < 3 * num_faces; ++i)
+    if (F[i] < 0 || F[i] >= num_vertices) {
+      std::ostringstream msg;
+      msg << "face " << i / 3 << " refers to vertex " << F[i] << ", but the mesh has " << num_vertices
+          << " vertices (valid indices are 0.." << num_vertices - 1 << ")";
+      throw std::invalid_argument(msg.str());
+    }
+  // Work in a cache-friendly numbering; the caller's numbering is restored on output. The renumbered
+  // faces (24 bytes a face) are freed before the factorization, whose peak is the set-up's.
+  {
+    std::vector<int> face_order;
+    spatial_order(V, num_vertices, F, num_faces, new_of_old_, face_order);
+    std::vector<int64_t> faces(3 * static_cast<size_t>(num_faces));
+    for (int f = 0; f < num_faces; ++f)
+      for (int k = 0; k < 3; ++k) faces[3 * f + k] = new_of_old_[F[3 * face_order[f] + k]];
+    progress.check();
+    topo_ = build_mesh_topology(num_vertices, faces.data(), num_faces, &progress);
+    for (int& f : topo_.input_face) f = face_order[f];
+  }
+  progress.enter(SetupPhase::weights);
+  num_input_faces_ = num_faces;
+  lambda_ = lambda;
+
+  input_.resize(num_vertices);
+  for (int v = 0; v < num_vertices; ++v)
+    input_[new_of_old_[v]] = Vector3d(V[3 * v], V[3 * v + 1], V[3 * v + 2]);
+  Vector3d lo = Vector3d::Constant(INFINITY), hi = Vector3d::Constant(-INFINITY), sum = Vector3d::Zero();
+  int referenced = 0;
+  for (int v = 0; v < num_vertices; ++v)
+    if (topo_.component[v] >= 0) {
+      lo = lo.cwiseMin(input_[v]);
+      hi = hi.cwiseMax(input_[v]);
+      sum += input_[v];
+      ++referenced;
+    }
+  scale_ = (hi - lo).maxCoeff();
+  // Headroom: results leave the bounding box (pins up to settings::max_pin_distance sizes away).
+  if (!(scale_ > 1e-300) || !(lo.minCoeff() >= -settings::max_coordinate && hi.maxCoeff() <= settings::max_coordinate) ||
+      !sum.allFinite()) {
+    std::ostringstream msg;
+    msg << "the mesh's extent is zero or too large to represent (all vertices at one point, or coordinates beyond +-"
+        << settings::max_coordinate << ")";
+    throw std::invalid_argument(msg.str());
+  }
+  // Clamped into the bounding box: a centroid rounded outside it (all x equal, far from the origin)
+  // put the normalized mesh ~1e263 from the origin, and every later sum lost all precision.
+  center_ = (sum / referenced).cwiseMax(lo).cwiseMin(hi);
+  rest_.resize(num_vertices);
+  for (int v = 0; v < num_vertices; ++v) rest_[v] = (input_[v] - center_) / scale_;
+  X_ = rest_;
+
+  compute_rest_quantities();
+  progress.check();
+  const int nF = static_cast<int>(topo_.faces.size());
+  normal_star_.assign(nF, Vector3d::UnitZ());
+  dual_.assign(nF, {0, 0, 0});
+  face_mu_.assign(nF, 0.0);
+  edge_star_.assign(topo_.edges.size(), Vector3d::Zero());
+  face_scratch_.assign(nF, Matrix3d::Zero());
+  rotation_.assign(num_vertices, Matrix3d::Identity());
+  rotation_q_.assign(num_vertices, Eigen::Quaterniond::Identity());
+  iteration_ = FixedPointIteration(num_vertices);
+
+  styles_.emplace_back(default_style());
+  face_style_.assign(nF, 0);
+  apply_pins(pinned, pin_positions, progress);
+  progress.finish();
+}
+
+void GaussSolver::compute_rest_quantities() {
+  const int nF = static_cast<int>(topo_.faces.size());
+  slot_weight_.resize(nF);
+  slot_rest_.resize(nF);
+  edge_weight_.assign(topo_.edges.size(), 0.0);
+  for (int f = 0; f < nF; ++f) {
+    const auto& t = topo_.faces[f];
+    Vector3d e[3];
+    for (int k = 0; k < 3; ++k) e[k] = rest_[t[(k + 1) % 3]] - rest_[t[k]];
+    const TriangleWeights tw = cotangent_weights(e);
+    for (int k = 0; k < 3; ++k) {
+      const double w = tw.w[k];
+      slot_weight_[f][k] = w;
+      slot_rest_[f][k] = w * e[k];
+      edge_weight_[topo_.face_edge[f][k]] += w;
+    }
+  }
+  slot_edge_weight_.resize(nF);
+  for (int f = 0; f < nF; ++f)
+    for (int k = 0; k < 3; ++k) slot_edge_weight_[f][k] = edge_weight_[topo_.face_edge[f][k]];
+}
+
+void GaussSolver::face_pass() {
+  // Algorithm 1's initialization (n* = n_f, e* = e_ij, u = 0) fused with the first round's normal
+  // update, which only needs this face's own edges: the first round reads no shared array.
+  const int nF = static_cast<int>(topo_.faces.size());
+  const double lam = lambda_;
+  const double zero[3] = {0, 0, 0};
+  parallel::for_each(nF, parallel::kMinParallelItems, [&](int f) {
+    const auto& t = topo_.faces[f];
+    Vector3d e[3];
+    for (int k = 0; k < 3; ++k) e[k] = X_[t[(k + 1) % 3]] - X_[t[k]];
+    const Vector3d c = e[0].cross(e[1]);
+    const double len = c.norm();
+    const double size = e[0].squaredNorm() + e[1].squaredNorm() + e[2].squaredNorm();
+    const bool degenerate = !(len > 1e-12 * size) || !std::isfinite(len);
+    const int s = face_style_[f];
+    face_mu_[f] = (!degenerate && s >= 0) ? styles_[s].mu() : 0.0;
+    dual_[f] = {0, 0, 0};
+    if (face_mu_[f] > 0.0) {
+      // The sign of e*_ij does not matter while u = 0 (both terms are even in e*).
+      const double lw[3] = {lam * slot_edge_weight_[f][0], lam * slot_edge_weight_[f][1],
+                            lam * slot_edge_weight_[f][2]};
+      normal_star_[f] = newton_normal(styles_[s], c / len, e, lw, zero);
+    }
+    Matrix3d cov = e[0] * slot_rest_[f][0].transpose();
+    cov.noalias() += e[1] * slot_rest_[f][1].transpose();
+    cov.noalias() += e[2] * slot_rest_[f][2].transpose();
+    face_scratch_[f] = cov;
+  });
+}
+
+void GaussSolver::fit_rotations() {
+  const int nV = topo_.num_vertices;
+  parallel::for_each(nV, parallel::kMinParallelItems, [&](int v) {
+    const int begin = topo_.vertex_corner_start[v], end = topo_.vertex_corner_start[v + 1];
+    if (begin == end) return;
+    Matrix3d M = Matrix3d::Zero();
+    for (int i = begin; i < end; ++i) M += face_scratch_[topo_.vertex_corners[i] / 3];
+    rotation_[v] = closest_rotation_warm(M, rotation_q_[v]);
+  });
+}
+
+void GaussSolver::admm_round(bool first_round) {
+  const int nF = static_cast<int>(topo_.faces.size());
+  const double lam = lambda_;
+  // Normals (Eqs. 17-22): the first round's update happened in face_pass(). Later rounds start with
+  // the previous round's dual update (Eq. 25).
+  if (!first_round) {
+    parallel::for_each(nF, parallel::kMinParallelItems, [&](int f) {
+      if (face_mu_[f] == 0.0) return;
+      const Vector3d n = normal_star_[f];
+      const auto& fe = topo_.face_edge[f];
+      const Vector3d es[3] = {edge_star_[fe[0]], edge_star_[fe[1]], edge_star_[fe[2]]};
+      for (int k = 0; k < 3; ++k) dual_[f][k] += es[k].dot(n);
+      const double lw[3] = {lam * slot_edge_weight_[f][0], lam * slot_edge_weight_[f][1],
+                            lam * slot_edge_weight_[f][2]};
+      normal_star_[f] = newton_normal(styles_[face_style_[f]], n, es, lw, dual_[f].data());
+    });
+  }
+  // Edges (Eq. 24): (I + sum mu n n^T) e* = e - sum mu u n over the styled faces of the edge.
+  const int nE = static_cast<int>(topo_.edges.size());
+  parallel::for_each(nE, parallel::kMinParallelItems, [&](int e) {
+    const Vector3d cur = X_[topo_.edges[e][1]] - X_[topo_.edges[e][0]];
+    // Collect the styled faces (usually one or two; more on non-manifold edges).
+    int count = 0;
+    double mu[2];
+    const Vector3d* nrm[2];
+    Vector3d b = cur;
+    for (int i = topo_.edge_slot_start[e]; i < topo_.edge_slot_start[e + 1]; ++i) {
+      const int f = topo_.edge_slots[i] / 3, k = topo_.edge_slots[i] % 3;
+      const double m = face_mu_[f];
+      if (m == 0.0) continue;
+      const Vector3d& n = normal_star_[f];
+      b -= (m * dual_[f][k]) * n;
+      if (count < 2) {
+        mu[count] = m;
+        nrm[count] = &n;
+      }
+      ++count;
+    }
+    if (count == 0) {
+      edge_star_[e] = cur;
+    } else if (count == 1) {  // Sherman-Morrison: (I + m n n^T)^-1 b = b - m (n.b) / (1 + m) n
+      edge_star_[e] = b - (mu[0] * nrm[0]->dot(b) / (1.0 + mu[0])) * *nrm[0];
+    } else if (count == 2) {  // Woodbury with the 2x2 system (I + D N^T N) y = D N^T b
+      const Vector3d &n0 = *nrm[0], &n1 = *nrm[1];
+      const double c = n0.dot(n1), r0 = mu[0] * n0.dot(b), r1 = mu[1] * n1.dot(b);
+      const double a00 = 1.0 + mu[0], a01 = mu[0] * c, a10 = mu[1] * c, a11 = 1.0 + mu[1];
+      const double det = a00 * a11 - a01 * a10;  // >= 1 + mu0 + mu1 > 0 for unit normals
+      const double y0 = (a11 * r0 - a01 * r1) / det, y1 = (a00 * r1 - a10 * r0) / det;
+      edge_star_[e] = b - y0 * n0 - y1 * n1;
+    } else {  // non-manifold: the 3x3 system itself, built only here (the common cases never read it)
+      Matrix3d A = Matrix3d::Identity();
+      for (int i = topo_.edge_slot_start[e]; i < topo_.edge_slot_start[e + 1]; ++i) {
+        const int f = topo_.edge_slots[i] / 3;
+        if (face_mu_[f] != 0.0) A.noalias() += face_mu_[f] * (normal_star_[f] * normal_star_[f].transpose());
+      }
+      Vector3d x;
+      edge_star_[e] = solve_symmetric3(A, b, x) ? x : cur;  // A >= I: always solvable
+    }
+  });
+}
+
+void GaussSolver::assemble_rhs(bool with_edges) {
+  const int nF = static_cast<int>(topo_.faces.size());
+  const double lam = lambda_, inv = 1.0 / (1.0 + lambda_);
+  parallel::for_each(nF, parallel::kMinParallelItems, [&](int f) {
+    const auto& t = topo_.faces[f];
+    // Spokes and rims: every vertex of the face rotates the face's three edges, so the ARAP target
+    // of an edge is the mean rotation of the face applied to its rest vector (Eq. 27).
+    const Matrix3d Rf = (rotation_[t[0]] + rotation_[t[1]] + rotation_[t[2]]) * (1.0 / 3.0);
+    Vector3d d[3];
+    for (int k = 0; k < 3; ++k) {
+      d[k] = Rf * slot_rest_[f][k];
+      if (!with_edges) continue;  // the cubic method: plain ARAP's global step
+      const double s = topo_.face_edge_sign[f][k];
+      d[k] = (d[k] + (lam * slot_weight_[f][k] * s) * edge_star_[topo_.face_edge[f][k]]) * inv;
+    }
+    // Corner k is the head of slot k-1 and the tail of slot k.
+    for (int k = 0; k < 3; ++k) face_scratch_[f].col(k) = d[(k + 2) % 3] - d[k];
+  });
+  parallel::for_each(laplacian_.num_unknowns(), parallel::kMinParallelItems, [&](int u) {
+    const int v = laplacian_.vertex_of_unknown(u);
+    Vector3d b = laplacian_.constant_rhs(u);
+    for (int i = topo_.vertex_corner_start[v]; i < topo_.vertex_corner_start[v + 1]; ++i) {
+      const int c = topo_.vertex_corners[i];
+      b += face_scratch_[c / 3].col(c % 3);
+    }
+    laplacian_.set_rhs(u, b);
+  });
+}
+
+void GaussSolver::local_global_step() {
+  auto t0 = Clock::now();
+  const bool gauss = method_ == Method::gauss;
+  if (gauss) {
+    face_pass();
+    timings_.faces = ms_since(t0);
+    t0 = Clock::now();
+    fit_rotations();
+    timings_.rotations = ms_since(t0);
+    t0 = Clock::now();
+    // The last round's dual update is skipped: duals are re-initialized at the next step and the
+    // global step does not read them.
+    for (int r = 0; r < admm_iterations_; ++r) admm_round(r == 0);
+  } else {
+    cubic_.covariances(topo_, X_, face_scratch_);
+    timings_.faces = ms_since(t0);
+    timings_.rotations = 0;
+    t0 = Clock::now();
+    // One flag for all vertices: the cubic momentum holds no vertex back, so every vertex's state
+    // was extrapolated (or none was).
+    static_assert(settings::cubic_momentum.hold == 0, "fit() would need to know which vertices were held");
+    cubic_.fit(topo_, face_scratch_, cubic_lambda_, iteration_.extrapolated(), rotation_, rotation_q_);
+  }
+  timings_.admm = ms_since(t0);
+  t0 = Clock::now();
+  assemble_rhs(gauss);
+  timings_.rhs = ms_since(t0);
+  t0 = Clock::now();
+  laplacian_.solve(X_);
+  timings_.solve = ms_since(t0);
+}
+
+void GaussSolver::step() {
+  const int threads = tuner_.next(parallel::max_threads());
+  const parallel::ScopedThreads scoped(threads);
+  const auto start = Clock::now();
+  // The normalized frame's longest bounding-box side is 1.
+  const auto map = [this] {
+    local_global_step();
+    if (keep_volume_) volume_.restore(topo_, X_);
+  };
+  if (method_ == Method::cubic) iteration_.advance(X_, cubic_.carried_state(), rest_, 1.0, map);
+  else iteration_.advance(X_, rest_, 1.0, map);
+  ++step_count_;
+  tuner_.record(threads, ms_since(start));
+  timings_.threads = threads;
+}
+
+int GaussSolver::step_until(double tolerance, int max_steps) {
+  if (max_steps < 0) throw std::invalid_argument("the number of steps must be >= 0");
+  set_tolerance(tolerance);
+  int taken = 0;
+  while (taken < max_steps && !converged()) {
+    step();
+    ++taken;
+  }
+  return taken;
+}
+
+void GaussSolver::set_tolerance(double tolerance) {
+  settings::tolerance.check(tolerance);
+  tolerance_ = tolerance;
+}
+
+void GaussSolver::reset() {
+  X_ = rest_;
+  // The rotation warm start is state too: a reset run must repeat the first run bit for bit.
+  std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
+  if (cubic_ready_) cubic_.reset();
+  laplacian_.place_pins(X_);
+  step_count_ = 0;
+  iteration_.invalidate();
+}
+
+}  // namespace gauss

@@ -1,0 +1,241 @@
+// GaussSolver between steps: styles, parameters, pins and the current vertices. Everything here takes
+// effect at the next step; only set_pins() re-factors (see constrained_laplacian.h).
+#include <algorithm>
+#include <cstdint>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gauss/solver/gauss_solver.h"
+#include "gauss/util/memory_budget.h"
+#include "gauss/settings.h"
+
+namespace gauss {
+
+using Eigen::Vector3d;
+
+void GaussSolver::set_styles(std::vector<PreferenceFunction> styles) {
+  for (int s : face_style_)
+    if (s >= static_cast<int>(styles.size())) {
+      std::ostringstream msg;
+      msg << "faces use style " << s << " but only " << styles.size()
+          << " styles were given; assign face styles that fit the new list first";
+      throw std::invalid_argument(msg.str());
+    }
+  styles_ = std::move(styles);
+  update_cubic_styles();
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_style(int index, PreferenceFunction style) {
+  if (index < 0 || index >= num_styles()) {
+    std::ostringstream msg;
+    msg << "style index " << index << " is out of range (there are " << num_styles() << " styles)";
+    throw std::invalid_argument(msg.str());
+  }
+  styles_[index] = std::move(style);
+  update_cubic_styles();
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_face_styles(const int64_t* style_of_input_face, int count) {
+  if (count != num_input_faces_) {
+    std::ostringstream msg;
+    msg << "face styles must have one entry per face (" << num_input_faces_ << "), got " << count;
+    throw std::invalid_argument(msg.str());
+  }
+  for (int i = 0; i < count; ++i)
+    if (style_of_input_face[i] < -1 || style_of_input_face[i] >= num_styles()) {
+      std::ostringstream msg;
+      msg << "face " << i << " has style " << style_of_input_face[i] << "; valid: -1 (unstyled) to "
+          << num_styles() - 1;
+      throw std::invalid_argument(msg.str());
+    }
+  for (size_t f = 0; f < topo_.faces.size(); ++f)
+    face_style_[f] = static_cast<int>(style_of_input_face[topo_.input_face[f]]);
+  update_cubic_styles();
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_lambda(double lambda) {
+  settings::lambda.check(lambda);
+  // Eq. 27: lambda only scales the right-hand side, so the factor stays valid.
+  lambda_ = lambda;
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_admm_iterations(int n) {
+  settings::admm_iterations.check(n);
+  admm_iterations_ = n;
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_keep_volume(bool on) {
+  keep_volume_ = on;
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_method(Method method) {
+  if (method != Method::gauss && method != Method::cubic) throw std::invalid_argument("unknown stylization method");
+  if (method == Method::cubic && !cubic_ready_) {
+    const size_t carried = CubicLocalStep::kCarriedPerVertex * static_cast<size_t>(topo_.num_vertices);
+    check_memory(CubicLocalStep::bytes_needed(topo_.num_vertices, static_cast<int>(topo_.faces.size())) +
+                     FixedPointIteration::carried_bytes(carried),
+                 "the cubic method's data for " + std::to_string(topo_.num_vertices) + " vertices");
+    cubic_ = CubicLocalStep(topo_, rest_, edge_weight_);
+    iteration_.prepare_carried(carried);
+    cubic_ready_ = true;
+    update_cubic_styles();
+  }
+  method_ = method;
+  set_acceleration(acceleration());  // the method's momentum
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_acceleration(bool on) {
+  iteration_.set_acceleration(on, method_ == Method::cubic ? settings::cubic_momentum : settings::gauss_momentum);
+}
+
+void GaussSolver::set_cubic_lambda(double lambda) {
+  settings::cubic_lambda.check(lambda);
+  cubic_lambda_ = lambda;
+  iteration_.invalidate();
+}
+
+void GaussSolver::update_cubic_styles() {
+  if (!cubic_ready_) return;
+  const int nV = topo_.num_vertices;
+  std::vector<double> strength(nV, 0.0);
+  std::vector<int> frame(nV, 0);  // 0: no style (identity), s + 1: style s
+  std::vector<Eigen::Matrix3d> frames(1, Eigen::Matrix3d::Identity());
+  for (const PreferenceFunction& style : styles_) frames.push_back(style.rotation());
+  for (int v = 0; v < nV; ++v) {
+    const int begin = topo_.vertex_corner_start[v], end = topo_.vertex_corner_start[v + 1];
+    if (begin == end) continue;
+    double sum = 0;
+    int best = -1, best_count = 0;
+    for (int i = begin; i < end; ++i) {
+      const int s = face_style_[topo_.vertex_corners[i] / 3];
+      if (s < 0) continue;
+      sum += styles_[s].mu();
+      int count = 0;  // a vertex has a handful of faces: counting by scanning is cheapest
+      for (int j = begin; j < end; ++j) count += face_style_[topo_.vertex_corners[j] / 3] == s;
+      if (count > best_count || (count == best_count && s < best)) best = s, best_count = count;
+    }
+    strength[v] = sum / (end - begin);
+    frame[v] = best + 1;
+  }
+  cubic_.set_vertex_styles(strength, frame, frames);
+}
+
+std::vector<Vector3d> GaussSolver::checked_pin_targets(const std::vector<int64_t>& pinned,
+                                                       const double* positions) const {
+  const int nV = topo_.num_vertices;
+  std::vector<Vector3d> targets(pinned.size());
+  std::vector<uint8_t> seen(nV, 0);
+  for (size_t i = 0; i < pinned.size(); ++i) {
+    const int64_t v = pinned[i];
+    if (v < 0 || v >= nV) {
+      std::ostringstream msg;
+      msg << "pinned vertex index " << v << " is out of range (the mesh has " << nV << " vertices)";
+      throw std::invalid_argument(msg.str());
+    }
+    if (seen[v]++) {
+      std::ostringstream msg;
+      msg << "vertex " << v << " is pinned more than once";
+      throw std::invalid_argument(msg.str());
+    }
+    targets[i] = positions ? Vector3d(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2])
+                           : input_[new_of_old_[v]];
+    if (!targets[i].allFinite()) {
+      std::ostringstream msg;
+      msg << "the target of pinned vertex " << v << " is NaN or infinite";
+      throw std::invalid_argument(msg.str());
+    }
+    if (!((targets[i] - center_).cwiseAbs().maxCoeff() <= settings::max_pin_distance * scale_)) {
+      std::ostringstream msg;
+      msg << "the target of pinned vertex " << v << " is too far from the mesh (more than "
+          << settings::max_pin_distance << " times its size)";
+      throw std::invalid_argument(msg.str());
+    }
+  }
+  return targets;
+}
+
+std::vector<Vector3d> GaussSolver::to_solver_frame(const std::vector<Vector3d>& caller) const {
+  std::vector<Vector3d> out(caller.size());
+  for (size_t i = 0; i < caller.size(); ++i) out[i] = (caller[i] - center_) / scale_;
+  return out;
+}
+
+void GaussSolver::set_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress* watcher) {
+  Progress unwatched;
+  Progress& progress = watcher ? *watcher : unwatched;
+  progress.start(SetupPhase::ordering);
+  apply_pins(pinned, pin_positions, progress);
+  progress.finish();
+}
+
+void GaussSolver::apply_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress& progress) {
+  std::vector<Vector3d> targets = checked_pin_targets(pinned, pin_positions);
+  std::vector<int64_t> internal(pinned.size());
+  for (size_t i = 0; i < pinned.size(); ++i) internal[i] = new_of_old_[pinned[i]];
+  // Built aside and then moved in: if the factorization throws (Cancelled, OutOfMemory, not positive
+  // definite), the solver keeps its previous pins and factor.
+  laplacian_ = ConstrainedLaplacian(topo_, edge_weight_, rest_, internal, to_solver_frame(targets), &progress);
+  ++factorization_count_;
+  volume_ = VolumeKeeper(topo_, rest_, internal);
+  pinned_input_ = pinned;
+  pin_targets_ = std::move(targets);
+  laplacian_.place_pins(X_);
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_pin_positions(const double* pin_positions, int count) {
+  if (count != static_cast<int>(pinned_input_.size()) || (count > 0 && pin_positions == nullptr)) {
+    std::ostringstream msg;
+    msg << "pin positions must have one row per pinned vertex (" << pinned_input_.size() << "), got " << count;
+    throw std::invalid_argument(msg.str());
+  }
+  std::vector<Vector3d> targets = checked_pin_targets(pinned_input_, pin_positions);
+  laplacian_.set_pin_positions(to_solver_frame(targets));
+  pin_targets_ = std::move(targets);
+  laplacian_.place_pins(X_);
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_vertices(const double* V, int count) {
+  const int nV = topo_.num_vertices;
+  if (count != nV || V == nullptr) {
+    std::ostringstream msg;
+    msg << "vertices must have one row per vertex (" << nV << "), got " << count;
+    throw std::invalid_argument(msg.str());
+  }
+  for (int old = 0; old < nV; ++old) {  // all checks first: a refused call changes nothing
+    const Vector3d p(V[3 * old], V[3 * old + 1], V[3 * old + 2]);
+    if (!p.allFinite()) {
+      std::ostringstream msg;
+      msg << "vertex " << old << " has a NaN or infinite coordinate";
+      throw std::invalid_argument(msg.str());
+    }
+    if (topo_.component[new_of_old_[old]] >= 0 &&
+        !((p - center_).cwiseAbs().maxCoeff() <= settings::max_pin_distance * scale_)) {
+      std::ostringstream msg;
+      msg << "vertex " << old << " is too far from the mesh (more than " << settings::max_pin_distance
+          << " times its size)";
+      throw std::invalid_argument(msg.str());
+    }
+  }
+  for (int old = 0; old < nV; ++old) {
+    const int v = new_of_old_[old];
+    if (topo_.component[v] >= 0) X_[v] = (Vector3d(V[3 * old], V[3 * old + 1], V[3 * old + 2]) - center_) / scale_;
+  }
+  laplacian_.place_pins(X_);
+  std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
+  if (cubic_ready_) cubic_.reset();  // the cubic method's ADMM warm start, as reset() clears it
+  iteration_.invalidate();
+}
+
+}  // namespace gauss

@@ -1,0 +1,228 @@
+#include "gauss/sparse/cholesky_solver.h"
+
+#include <algorithm>
+#include <new>
+#include <string>
+
+#include "gauss/util/memory_budget.h"
+#include "gauss/sparse/nested_dissection.h"
+#include "gauss/util/parallel.h"
+#include "gauss/sparse/supernodal_analysis.h"
+#include "gauss/sparse/supernodal_factor.h"
+#include "gauss/util/system_memory.h"
+
+namespace gauss {
+namespace {
+
+// s -= sum_k u[k] * y[3k..3k+2] for the three columns, u contiguous. Two accumulator sets halve the
+// floating-point dependency chain; the pairing is fixed, so the result depends only on the data.
+inline void subtract_dot(const double* u, const double* y, int len, double& s0, double& s1, double& s2) {
+  double a0 = 0, a1 = 0, a2 = 0, b0 = 0, b1 = 0, b2 = 0;
+  int k = 0;
+  for (; k + 1 < len; k += 2) {
+    const double l = u[k], m = u[k + 1];
+    a0 += l * y[3 * k];
+    a1 += l * y[3 * k + 1];
+    a2 += l * y[3 * k + 2];
+    b0 += m * y[3 * k + 3];
+    b1 += m * y[3 * k + 4];
+    b2 += m * y[3 * k + 5];
+  }
+  if (k < len) {
+    const double l = u[k];
+    a0 += l * y[3 * k];
+    a1 += l * y[3 * k + 1];
+    a2 += l * y[3 * k + 2];
+  }
+  s0 -= a0 + b0;
+  s1 -= a1 + b1;
+  s2 -= a2 + b2;
+}
+
+// The graph of A's off-diagonal entries, both directions, for the ordering.
+void adjacency(const Eigen::SparseMatrix<double>& A, std::vector<int>& start, std::vector<int>& adj) {
+  const int n = static_cast<int>(A.rows());
+  start.assign(n + 1, 0);
+  for (int j = 0; j < n; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it)
+      if (it.row() > j) {
+        ++start[it.row() + 1];
+        ++start[j + 1];
+      }
+  for (int i = 0; i < n; ++i) start[i + 1] += start[i];
+  adj.resize(start[n]);
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (int j = 0; j < n; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, j); it; ++it)
+      if (it.row() > j) {
+        adj[fill[it.row()]++] = j;
+        adj[fill[j]++] = static_cast<int>(it.row());
+      }
+}
+
+}  // namespace
+
+void CholeskySolver::factor(Eigen::SparseMatrix<double> A, Progress* watcher) {
+  Progress unwatched;
+  Progress& progress = watcher ? *watcher : unwatched;
+  const bool own_run = !progress.running();
+  if (own_run) progress.start(SetupPhase::ordering);
+  const int n = static_cast<int>(A.rows());
+  try {
+    progress.enter(SetupPhase::ordering);
+    std::vector<int> order;
+    {
+      std::vector<int> start, adj;
+      adjacency(A, start, adj);
+      order = nested_dissection(n, start, adj, progress);
+    }
+    progress.enter(SetupPhase::symbolic);
+    SupernodalStructure S = analyse_supernodal(A, order, progress);
+    Eigen::SparseMatrix<double>().swap(A);  // S.A has the values now
+    // The ordering's scratch (much of it in the pool threads' arenas) and the analysis's, freed but
+    // still resident, would lie under the factor: the set-up's peak.
+    release_free_memory();
+    check_memory(S.numeric_bytes(), "the factorization of " + std::to_string(n) + " unknowns");
+    progress.enter(SetupPhase::factorizing);
+    std::unique_ptr<double[]> values = factor_supernodal(S, progress);
+
+    // Everything succeeded: only now replace the previous factor.
+    std::vector<double> inv_diag(n);
+    long long nonzeros = 0;
+    for (int s = 0; s < S.num_supernodes(); ++s) {
+      const int f = S.col_start[s], w = S.col_start[s + 1] - f, m = S.row_start[s + 1] - S.row_start[s];
+      const double* U = values.get() + S.value_start[s];
+      for (int k = 0; k < w; ++k) inv_diag[f + k] = 1.0 / U[k + int64_t{w} * k];
+      nonzeros += int64_t{w} * m - int64_t{w} * (w - 1) / 2;
+    }
+    std::vector<double> top_sums(3 * static_cast<size_t>(kFactorParts) * (n - S.top_col), 0.0);
+    n_ = n;
+    nonzeros_ = nonzeros;
+    new_of_old_ = std::move(S.new_of_old);
+    col_start_ = std::move(S.col_start);
+    row_start_ = std::move(S.row_start);
+    rows_ = std::move(S.rows);
+    value_start_ = std::move(S.value_start);
+    values_ = std::move(values);
+    inv_diag_ = std::move(inv_diag);
+    part_start_ = std::move(S.part_start);
+    top_col_ = S.top_col;
+    top_sums_ = std::move(top_sums);
+  } catch (const std::bad_alloc&) {
+    throw OutOfMemory("not enough memory to factor the Laplacian of " + std::to_string(n) + " unknowns");
+  }
+  release_free_memory();  // the structure's scratch and the copy of A, before the caller's step buffers
+  if (own_run) progress.finish();
+}
+
+void CholeskySolver::forward(int first_super, int last_super, double* y, double* top_sums) const {
+  for (int s = first_super; s < last_super; ++s) {
+    const int f = col_start_[s], w = col_start_[s + 1] - f, m = row_start_[s + 1] - row_start_[s];
+    const int* R = rows_.data() + row_start_[s];
+    const double* U = values_.get() + value_start_[s];
+    double* yJ = y + 3 * static_cast<size_t>(f);
+    // Diagonal block: L_JJ z_J = y_J; column k of U holds row k of L_JJ left of the diagonal.
+    for (int k = 0; k < w; ++k) {
+      double s0 = yJ[3 * k], s1 = yJ[3 * k + 1], s2 = yJ[3 * k + 2];
+      subtract_dot(U + int64_t{w} * k, yJ, k, s0, s1, s2);
+      const double d = inv_diag_[f + k];
+      yJ[3 * k] = s0 * d;
+      yJ[3 * k + 1] = s1 * d;
+      yJ[3 * k + 2] = s2 * d;
+    }
+    // Rows below: y_r -= L(r, J) z_J, or owed to a row above the cut (top_sums, added later).
+    for (int c = w; c < m; ++c) {
+      const int r = R[c];
+      double s0 = 0, s1 = 0, s2 = 0;  // -L(r, J) z_J
+      subtract_dot(U + int64_t{w} * c, yJ, w, s0, s1, s2);
+      if (top_sums && r >= top_col_) {
+        double* owed = top_sums + 3 * static_cast<size_t>(r - top_col_);
+        owed[0] -= s0;
+        owed[1] -= s1;
+        owed[2] -= s2;
+      } else {
+        double* target = y + 3 * static_cast<size_t>(r);
+        target[0] += s0;
+        target[1] += s1;
+        target[2] += s2;
+      }
+    }
+  }
+}
+
+void CholeskySolver::backward(int first_super, int last_super, double* y) const {
+  for (int s = last_super - 1; s >= first_super; --s) {
+    const int f = col_start_[s], w = col_start_[s + 1] - f, m = row_start_[s + 1] - row_start_[s];
+    const int* R = rows_.data() + row_start_[s];
+    const double* U = values_.get() + value_start_[s];
+    double* yJ = y + 3 * static_cast<size_t>(f);
+    // y_J -= L(R, J)^T x_R: the rows below are final (they lie above in the tree). Last row first,
+    // so that the whole backward sweep reads the factor in one descending stream (the hardware
+    // prefetcher follows it; block by block ascending it missed at every small supernode). Four rows
+    // at a time, so y_J is loaded and stored once per four columns of U; the x values are copied
+    // to locals because the compiler cannot know they do not alias y_J.
+    int c = m;
+    for (; c - 4 >= w; c -= 4) {
+      double x[4][3];
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 3; ++i) x[j][i] = y[3 * static_cast<size_t>(R[c - 4 + j]) + i];
+      const double* u0 = U + int64_t{w} * (c - 4);
+      const double* u1 = u0 + w;
+      const double* u2 = u1 + w;
+      const double* u3 = u2 + w;
+      for (int k = 0; k < w; ++k) {
+        const double a = u0[k], b = u1[k], d = u2[k], e = u3[k];
+        for (int i = 0; i < 3; ++i) yJ[3 * k + i] -= (a * x[0][i] + b * x[1][i]) + (d * x[2][i] + e * x[3][i]);
+      }
+    }
+    for (--c; c >= w; --c) {
+      const double* xr = y + 3 * static_cast<size_t>(R[c]);
+      const double x0 = xr[0], x1 = xr[1], x2 = xr[2];
+      const double* u = U + int64_t{w} * c;
+      for (int k = 0; k < w; ++k) {
+        yJ[3 * k] -= u[k] * x0;
+        yJ[3 * k + 1] -= u[k] * x1;
+        yJ[3 * k + 2] -= u[k] * x2;
+      }
+    }
+    // Diagonal block: L_JJ^T x_J = y_J, last unknown first, by columns of U (contiguous).
+    for (int k = w - 1; k >= 0; --k) {
+      const double d = inv_diag_[f + k];
+      const double x0 = yJ[3 * k] * d, x1 = yJ[3 * k + 1] * d, x2 = yJ[3 * k + 2] * d;
+      yJ[3 * k] = x0;
+      yJ[3 * k + 1] = x1;
+      yJ[3 * k + 2] = x2;
+      const double* u = U + int64_t{w} * k;
+      for (int i = 0; i < k; ++i) {
+        yJ[3 * i] -= u[i] * x0;
+        yJ[3 * i + 1] -= u[i] * x1;
+        yJ[3 * i + 2] -= u[i] * x2;
+      }
+    }
+  }
+}
+
+void CholeskySolver::solve_ordered_in_place(double* y) const {
+  if (n_ == 0) return;
+  const size_t top_rows = static_cast<size_t>(n_ - top_col_);
+  const int top = part_start_[kFactorParts], supernodes = static_cast<int>(col_start_.size()) - 1;
+  // Forward (L z = b): the parts, each with its own sums for the rows above the cut, then those
+  // sums in part order, then the rows above the cut.
+  parallel::for_tasks(kFactorParts, n_ > 4096, [&](int t) {
+    forward(part_start_[t], part_start_[t + 1], y, top_sums_.data() + 3 * top_rows * t);
+  });
+  for (int t = 0; t < kFactorParts; ++t) {
+    double* sums = top_sums_.data() + 3 * top_rows * t;
+    double* target = y + 3 * static_cast<size_t>(top_col_);
+    for (size_t i = 0; i < 3 * top_rows; ++i) {
+      target[i] -= sums[i];
+      sums[i] = 0.0;
+    }
+  }
+  forward(top, supernodes, y, nullptr);
+  // Backward (L^T x = z): the rows above the cut first, then the parts.
+  backward(top, supernodes, y);
+  parallel::for_tasks(kFactorParts, n_ > 4096, [&](int t) { backward(part_start_[t], part_start_[t + 1], y); });
+}
+
+}  // namespace gauss
