@@ -19,7 +19,8 @@
 // 1e-3. Momentum follows that direction: T is applied at
 //   y_k = x_k + beta (x_k - x_{k-1})        (beta: the method's settings::Momentum)
 // and x_{k+1} = T(y_k), a genuine step of Algorithm 1, is what the caller sees; reldV is measured from
-// y_k, so it still says how far one plain step moves. Adaptive restart (O'Donoghue & Candes 2015,
+// y_k, so it still says how far one plain step moves, divided by the method's stop_factor
+// (settings::Momentum: where that understates it). Adaptive restart (O'Donoghue & Candes 2015,
 // per vertex): a vertex whose step from y_k points against its momentum (a negative dot product) gets
 // none for the next `hold` steps, so sliver regions that flap from step to step are not kicked
 // further; when the dot product summed over all vertices is negative, all restart.
@@ -28,8 +29,8 @@
 // state with the vertex (momentum on the vertices alone stopped the cubic method early, short of the
 // plain result: 35K bunny share 0.47 against 0.55).
 // Measured (reldV < 1e-3; Gauss: cube, lambda 4, sigma 4, 1 ADMM round): bunny 35K 189 -> 54 steps,
-// Spot 181 -> 67, armadillo 369 -> 126; cubic (lambda 0.2): bunny 35K 328 -> 39, Spot 124 -> 28,
-// armadillo 408 -> 33; the share of faces within 10 degrees of a cube normal stays within 0.02 of the
+// Spot 181 -> 67, armadillo 369 -> 126; cubic (lambda 0.2): bunny 35K 267 -> 42, Spot 117 -> 32,
+// armadillo 564 -> 37; the share of faces within 10 degrees of a cube normal stays within 0.02 of the
 // plain run's. Anderson acceleration and over-relaxation were measured too and lost
 // (docs/performance.md, "Converging in fewer steps").
 //
@@ -79,6 +80,7 @@ class FixedPointIteration {
     move_to_momentum_point(X, carried);  // X := y, point_ := y, current_ := x_k
     step();
     last_reldv_ = relative_change(point_, X, rest, size);
+    if (extrapolated_) last_reldv_ /= momentum_.stop_factor;
     if (accelerate_) update_momentum(X, carried);
   }
 
