@@ -48,7 +48,7 @@ def build():
     result = bpy.ops.object.gauss_bake_animation(frame_start=FRAMES[0], frame_end=FRAMES[1],
                                                  filepath=cache, warm_start=True)
     assert result == {'FINISHED'}, result
-    modifier = scene_kit.addon.cache_modifier.find(obj)
+    modifier = scene_kit.addon.mesh.cache_modifier.find(obj)
     rows = {True: [], False: []}
     for baked in (False, True):
         modifier.show_viewport = modifier.show_render = baked

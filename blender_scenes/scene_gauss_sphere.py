@@ -51,19 +51,19 @@ def gauss_sphere_of(obj):
     addon = scene_kit.addon
     slot = addon.styles.active_slot(obj.gauss_stylization)
     style = addon.styles.checked_style(addon.native.core(), obj, slot)
-    unit, triangles = addon.gauss_sphere.icosphere()
+    unit, triangles = addon.sphere.gauss_sphere.icosphere()
     sphere = mesh_object("Gauss sphere of " + obj.name, unit * RADIUS, [tuple(t) for t in triangles])
     # Faces coloured by the mean g of their corners, in BINS steps of the overlay's heat map.
     g = np.asarray(style.value(unit))[triangles].mean(axis=1)
     level = np.clip((g * BINS).astype(int), 0, BINS - 1)
-    colours = addon.gauss_sphere.heat_colours((np.arange(BINS) + 0.5) / BINS)
+    colours = addon.sphere.gauss_sphere.heat_colours((np.arange(BINS) + 0.5) / BINS)
     for rgba in colours:
         sphere.data.materials.append(render_kit.material(tuple(rgba)))
     sphere.data.polygons.foreach_set("material_index", level.tolist())
 
     preferred = np.asarray(style.normals)
-    normals = addon.sphere_overlay.face_normal_sample(obj)
-    point_colour = tuple(addon.sphere_overlay.NORMAL_POINTS[:3]) + (1.0,)  # the overlay's
+    normals = addon.sphere.sphere_overlay.face_normal_sample(obj)
+    point_colour = tuple(addon.sphere.sphere_overlay.NORMAL_POINTS[:3]) + (1.0,)  # the overlay's
     parts = [(normals * RADIUS * 1.003, normals, POINT * RADIUS, point_colour),
              (preferred * RADIUS * 1.004, preferred, DOT * RADIUS * 1.3, (0.0, 0.0, 0.0, 1.0)),
              (preferred * RADIUS * 1.006, preferred, DOT * RADIUS, (1.0, 1.0, 1.0, 1.0))]

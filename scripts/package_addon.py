@@ -144,8 +144,16 @@ def facts_file(build_dir):
 
 
 def python_files():
-    """(path on disk, name inside the package) of the add-on's Python sources, sorted."""
-    files = [(os.path.join(SOURCE, name), name) for name in sorted(os.listdir(SOURCE)) if name.endswith(".py")]
+    """(path on disk, name inside the package) of the add-on's Python sources, its sub-packages'
+    included ("run/session.py"), sorted."""
+    files = []
+    for folder, subfolders, names in os.walk(SOURCE):
+        subfolders[:] = [name for name in subfolders if name != "__pycache__"]
+        for name in names:
+            if name.endswith(".py"):
+                path = os.path.join(folder, name)
+                files.append((path, os.path.relpath(path, SOURCE).replace(os.sep, "/")))
+    files.sort(key=lambda entry: entry[1])
     if not any(name == "__init__.py" for _, name in files):
         fail("no __init__.py in %s" % SOURCE)
     return files
@@ -267,6 +275,7 @@ def build_extensions(python, wheels, version, addon_min, facts, out_dir, blender
     tag = "cp" + python.replace(".", "")
     with tempfile.TemporaryDirectory(prefix="gauss_extension_") as stage:
         for path, name in python_files() + [(facts, "core_facts.json")]:
+            os.makedirs(os.path.dirname(os.path.join(stage, name)), exist_ok=True)
             shutil.copyfile(path, os.path.join(stage, name))
         os.makedirs(os.path.join(stage, "wheels"))
         for path, _ in wheels:

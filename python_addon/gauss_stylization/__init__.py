@@ -14,28 +14,44 @@ bl_info = {
     "category": "Mesh",
 }
 
-# Bottom of the import order first: each module imports only modules listed before it.
-if "bpy" in locals():  # F8 / script reload: reload the submodules too
-    import importlib
-    for _module in (errors, native, pc2, fields, schema, properties, mesh_io, source, styles, validation,
-                    cache_modifier, output, rest_store, settings_io, handles, undo_guard, runs, progress,
-                    solver_setup, session, targets, live_run, scripted_run, viewport, modal_events, directions,
-                    orientation, surface, style_from_data, gauss_sphere, gpu_compat, sphere_overlay,
-                    sphere_editing, handle_tool, operators, slot_operators, ui, bake, bake_operators, bake_ui):
+# Every module, bottom of the import order first: each imports only modules listed before it. The
+# sub-packages are jobs, in layers that import one way only (docs/architecture.md, "The add-on";
+# tests/python/test_addon_layers.py checks it).
+MODULES = (
+    "errors", "native",
+    "settings.fields", "settings.schema", "settings.properties", "settings.settings_io", "settings.validation",
+    "settings.styles",
+    "mesh.mesh_io", "mesh.source", "mesh.cache_modifier", "mesh.output", "mesh.rest_store",
+    "view.viewport", "view.gpu_compat", "view.sidebar",
+    "run.undo_guard", "run.runs", "run.progress", "run.solver_setup", "run.session", "run.targets",
+    "run.pin_targets", "run.live_run", "run.scripted_run", "run.modal_events",
+    "handles.handles", "handles.handle_tool",
+    "sphere.gauss_sphere", "sphere.directions", "sphere.orientation", "sphere.surface", "sphere.sphere_overlay",
+    "sphere.sphere_editing", "sphere.style_from_data",
+    "bake.pc2", "bake.bake", "bake.bake_operators", "bake.bake_ui",
+    "operators", "slot_operators", "ui",
+)
+
+import importlib  # noqa: E402
+
+_reloading = "bpy" in locals()  # F8 / script reload: reload the modules too, in that order
+for _name in MODULES:
+    _module = importlib.import_module("." + _name, __name__)
+    if _reloading:
         importlib.reload(_module)
-else:
-    from . import (errors, native, pc2, fields, schema, properties, mesh_io, source, styles, validation,
-                   cache_modifier, output, rest_store, settings_io, handles, undo_guard, runs, progress,
-                   solver_setup, session, targets, live_run, scripted_run, viewport, modal_events, directions,
-                   orientation, surface, style_from_data, gauss_sphere, gpu_compat, sphere_overlay,
-                   sphere_editing, handle_tool, operators, slot_operators, ui, bake, bake_operators, bake_ui)
 
-import inspect
+import inspect  # noqa: E402
 
-import bpy
+import bpy  # noqa: E402
 
-classes = (properties.classes + operators.classes + slot_operators.classes + style_from_data.classes
-           + sphere_editing.classes + bake_operators.classes + ui.classes + bake_ui.classes)
+from . import bake, handles, operators, run, settings, slot_operators, sphere, ui  # noqa: E402  (loaded above)
+# The modules artists' scripts import by name (docs/scripting.md, docs/baking.md), at the top as before.
+from .bake import pc2  # noqa: E402,F401
+from .mesh import mesh_io  # noqa: E402,F401
+from .settings import settings_io, styles  # noqa: E402,F401
+
+classes = (settings.properties.classes + operators.classes + slot_operators.classes + sphere.style_from_data.classes
+           + sphere.sphere_editing.classes + bake.bake_operators.classes + ui.classes + bake.bake_ui.classes)
 
 
 def _tooltip_from_docstring(cls):
@@ -50,19 +66,19 @@ def register():
     for cls in classes:
         _tooltip_from_docstring(cls)
         bpy.utils.register_class(cls)
-    properties.register_pointer()
-    runs.register_handlers()
-    sphere_overlay.register()
-    sphere_editing.register()
-    handle_tool.register()
+    settings.properties.register_pointer()
+    run.runs.register_handlers()
+    sphere.sphere_overlay.register()
+    sphere.sphere_editing.register()
+    handles.handle_tool.register()
 
 
 def unregister():
-    runs.unregister_handlers()
-    runs.stop_all(bpy.context)  # first: a run's end is told to the event handlers below (on_end)
-    handle_tool.unregister()
-    sphere_editing.unregister()
-    sphere_overlay.unregister()
-    properties.unregister_pointer()
+    run.runs.unregister_handlers()
+    run.runs.stop_all(bpy.context)  # first: a run's end is told to the event handlers below (on_end)
+    handles.handle_tool.unregister()
+    sphere.sphere_editing.unregister()
+    sphere.sphere_overlay.unregister()
+    settings.properties.unregister_pointer()
     for cls in reversed(classes):
         bpy.utils.unregister_class(cls)

@@ -13,15 +13,17 @@ import time
 import bpy
 from bpy.props import StringProperty
 
-from . import handles, modal_events, rest_store, runs, schema, scripted_run, settings_io
 from .errors import SettingsError
-from .live_run import LiveRun
-from .progress import ProgressReport
-from .targets import TITLE, plan_objects, report_skipped, stylize_objects, stylize_problem
-from .validation import object_problem, poll_result
-from .viewport import existing_area, redraw_viewports
+from .mesh import rest_store
+from .run import modal_events, runs, scripted_run
+from .run.live_run import TICK_SECONDS, LiveRun
+from .run.pin_targets import targets_json
+from .run.progress import ProgressReport
+from .run.targets import TITLE, plan_objects, report_skipped, stylize_objects, stylize_problem
+from .settings import schema, settings_io
+from .settings.validation import object_problem, poll_result
+from .view.viewport import existing_area, redraw_viewports
 
-TICK_SECONDS = 0.01
 PANEL_SECONDS = 0.25  # how often a live run redraws the sidebar (the viewport: every tick that steps)
 KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel")  # what modal_events does with keys
 PIN_HINT = "Drag a pin: move its handle"  # what handle_tool does, where a run has pins
@@ -52,7 +54,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
     # Settings a kept live run ended with, so the redo panel repeats that run (JSON, see settings_io).
     settings_json: StringProperty(options={'HIDDEN', 'SKIP_SAVE'})
     # Where a kept live run left dragged pins, so the redo panel repeats it; scripts may set it too:
-    # '{"object name": [[x, y, z], ...]}', one target per Pin Group vertex (handles.targets_json).
+    # '{"object name": [[x, y, z], ...]}', one target per Pin Group vertex (run/pin_targets.py: targets_json).
     pin_targets: StringProperty(name="Pin Targets", options={'HIDDEN', 'SKIP_SAVE'},
                                 description="New positions of the pinned vertices, JSON by object name")
 
@@ -243,7 +245,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             live.keep()
             self.iterations = min(live.steps, _STEPS.hard[1])
             self.settings_json = settings_io.objects_to_json([s.obj for s in live.sessions])
-            self.pin_targets = handles.targets_json(live.sessions)
+            self.pin_targets = targets_json(live.sessions)
         try:
             if not keep:
                 live.cancel()  # restores whatever still exists, never freed data

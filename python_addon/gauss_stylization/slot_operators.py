@@ -12,11 +12,11 @@ from bpy.props import EnumProperty, FloatProperty
 
 from . import native
 from .errors import NativeModuleError
-from .mesh_io import read_selected_faces
-from .schema import CUSTOM, style_label
-from .styles import active_slot
-from .validation import poll_result
-from .viewport import redraw_sidebars
+from .mesh.mesh_io import read_selected_faces
+from .settings.schema import CUSTOM, style_label
+from .settings.styles import active_slot
+from .settings.validation import poll_result
+from .view.viewport import redraw_sidebars
 
 
 def _settings(context):

@@ -29,7 +29,8 @@ for _path in (ADDON_DIR, os.path.join(REPO, "tests", "common"),
         sys.path.insert(0, _path)
 
 # Importing does not register the add-on.
-from gauss_stylization import live_run as _live_run, mesh_io, settings_io, targets  # noqa: E402
+from gauss_stylization import mesh_io, settings_io  # noqa: E402
+from gauss_stylization.run import live_run as _live_run, targets  # noqa: E402
 from measures import aligned_share as _aligned_share  # noqa: E402
 import scene_kit  # noqa: E402
 from scene_kit import activate  # noqa: E402,F401  (part of this module's API)

@@ -67,7 +67,8 @@ def report(what):
 
 def scenario():
     import gauss_stylization
-    from gauss_stylization import handle_tool, sphere_overlay
+    from gauss_stylization.handles import handle_tool
+    from gauss_stylization.sphere import sphere_overlay
     gauss_stylization.register()
     for obj in list(bpy.data.objects):
         if obj.type == 'MESH':
@@ -104,7 +105,7 @@ def scenario():
         bpy.ops.object.gauss_stylize('INVOKE_DEFAULT')
     deadline = time.monotonic() + 300
     while time.monotonic() < deadline:
-        op = next(iter(gauss_stylization.runs.running.values()), None)
+        op = next(iter(gauss_stylization.run.runs.running.values()), None)
         if op is not None and op.session is not None and op.session.steps >= 2:
             break
         yield 0.2
@@ -113,7 +114,7 @@ def scenario():
         report("live run, Gauss sphere off")
         settings.show_gauss_sphere = True
         report("live run, Gauss sphere on")
-    op = next(iter(gauss_stylization.runs.running.values()), None)
+    op = next(iter(gauss_stylization.run.runs.running.values()), None)
     if op is not None:
         print("live run: median step %.0f ms, tick %.0f ms" % (statistics.median(op.session.step_ms),
                                                                 statistics.median(op.tick_ms)), flush=True)

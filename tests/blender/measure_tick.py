@@ -50,19 +50,19 @@ def main():
     obj = bpy.context.selected_objects[0]
     bpy.context.view_layer.objects.active = obj
     # The smallest Tolerance, so every tick measured takes a step (a converged object takes none).
-    schema = gauss_stylization.schema
+    schema = gauss_stylization.settings.schema
     obj.gauss_stylization.tolerance = schema.field(schema.OBJECT, "tolerance").hard[0]
 
     if drag:
         pin_top_and_bottom(obj)
     start = time.perf_counter()
-    planned = gauss_stylization.targets.plan_objects(Reports(), [obj])
-    live = gauss_stylization.live_run.LiveRun(planned)  # what the modal operator runs
+    planned = gauss_stylization.run.targets.plan_objects(Reports(), [obj])
+    live = gauss_stylization.run.live_run.LiveRun(planned)  # what the modal operator runs
     live.setup.wait()
     live.finish_setup()
     setup_ms = (time.perf_counter() - start) * 1000.0
     run = live.sessions[0]
-    handles = gauss_stylization.handles.Handles(run) if drag else None
+    handles = gauss_stylization.handles.handles.Handles(run) if drag else None
     tick_ms, move_ms, held_ms = [], [], []
     for tick in range(ticks):
         # Dragging: blocks of DRAG_BLOCK ticks that move the top handle every tick, between blocks

@@ -23,7 +23,7 @@ def _stylized_alone(obj, frame, steps):
     """Stylize ``frame`` of ``obj`` on its own (Use Modifiers, New Object), as an artist would
     without a bake; the object's bake is switched off meanwhile. Returns the coordinates."""
     addon = helpers.scene_kit.addon or __import__("gauss_stylization")
-    modifier = addon.cache_modifier.find(obj)
+    modifier = addon.mesh.cache_modifier.find(obj)
     if modifier is not None:
         modifier.show_viewport = False
     bpy.context.scene.frame_set(frame)
@@ -55,7 +55,7 @@ def test_cold_bake_frames_equal_stylizing_each_frame_alone(addon, tmp_path):
 
 def _animation_at(addon, obj, frame):
     """The animated (armature-deformed) mesh at ``frame``, the object's bake switched off."""
-    modifier = addon.cache_modifier.find(obj)
+    modifier = addon.mesh.cache_modifier.find(obj)
     if modifier is not None:
         modifier.show_viewport = False
     shown = rig.shown_at(obj, frame)
@@ -116,7 +116,7 @@ def test_playback_shows_the_baked_frames_exactly(addon, tmp_path):
     path = tmp_path / "capsule.pc2"
     assert _bake_animation(path) == {'FINISHED'}
     modifier = obj.modifiers[-1]
-    assert modifier.name == addon.cache_modifier.NAME and modifier.type == 'MESH_CACHE'
+    assert modifier.name == addon.mesh.cache_modifier.NAME and modifier.type == 'MESH_CACHE'
     assert (modifier.cache_format, modifier.filepath, modifier.frame_start) == ('PC2', str(path), 1.0)
     assert [m.type for m in obj.modifiers] == ['ARMATURE', 'MESH_CACHE']
     cache = addon.pc2.read(str(path))
@@ -155,7 +155,7 @@ def test_bake_progress_frame_k_is_k_steps_of_a_scripted_run(addon, tmp_path):
         helpers.mesh_io.write_vertex_coords(obj.data, start)  # back to the start: the next run is fresh
         obj.data.update()
         assert np.array_equal(helpers.evaluated_coords(obj), cache.frames[k])  # played back
-    assert obj.modifiers[0].name == addon.cache_modifier.NAME  # base-mesh bake: first in the stack
+    assert obj.modifiers[0].name == addon.mesh.cache_modifier.NAME  # base-mesh bake: first in the stack
 
 
 def test_bake_progress_of_the_evaluated_mesh_goes_last(addon, tmp_path):
@@ -180,12 +180,12 @@ def test_a_cancelled_bake_leaves_no_file_no_modifier_and_the_frame(addon, tmp_pa
     helpers.settings_io.add_slot(obj.gauss_stylization, {"preset": 'CUBE'})
     bpy.context.scene.frame_set(7)
     path = tmp_path / "capsule.pc2"
-    job = addon.bake.AnimationBake(bpy.context, obj, 1, 10, str(path), warm_start=False)
+    job = addon.bake.bake.AnimationBake(bpy.context, obj, 1, 10, str(path), warm_start=False)
     job.advance()
     job.advance()
     assert len(_folder_listing(tmp_path)) == 1  # the temporary file
     job.cancel()
-    assert _folder_listing(tmp_path) == [] and addon.cache_modifier.find(obj) is None
+    assert _folder_listing(tmp_path) == [] and addon.mesh.cache_modifier.find(obj) is None
     assert bpy.context.scene.frame_current == 7
 
 
@@ -194,12 +194,12 @@ def test_a_cancelled_bake_keeps_the_previous_bake(addon, tmp_path):
     path = tmp_path / "capsule.pc2"
     assert _bake_animation(path) == {'FINISHED'}
     before = path.read_bytes()
-    job = addon.bake.AnimationBake(bpy.context, obj, 2, 4, str(path), warm_start=False)
-    assert not addon.cache_modifier.find(obj).show_viewport  # off while the bake reads the animation
+    job = addon.bake.bake.AnimationBake(bpy.context, obj, 2, 4, str(path), warm_start=False)
+    assert not addon.mesh.cache_modifier.find(obj).show_viewport  # off while the bake reads the animation
     job.advance()
     job.cancel()
     assert path.read_bytes() == before and _folder_listing(tmp_path) == ["capsule.pc2"]
-    modifier = addon.cache_modifier.find(obj)
+    modifier = addon.mesh.cache_modifier.find(obj)
     assert modifier.show_viewport and modifier.frame_start == 1
 
 
@@ -213,7 +213,7 @@ def test_a_failed_bake_leaves_nothing(addon, tmp_path):
     subdivision.keyframe_insert("levels", frame=4)
     with pytest.raises(RuntimeError, match="at frame 4"):
         _bake_animation(tmp_path / "capsule.pc2")
-    assert _folder_listing(tmp_path) == [] and addon.cache_modifier.find(obj) is None
+    assert _folder_listing(tmp_path) == [] and addon.mesh.cache_modifier.find(obj) is None
     assert bpy.context.scene.frame_current == 1
 
 
@@ -228,7 +228,7 @@ def test_bad_bake_requests_are_refused_with_a_message(addon, tmp_path, call, mes
     obj = rig.bent_capsule()
     with pytest.raises(RuntimeError, match=message):
         call(str(tmp_path / "x.pc2"))
-    assert _folder_listing(tmp_path) == [] and addon.cache_modifier.find(obj) is None
+    assert _folder_listing(tmp_path) == [] and addon.mesh.cache_modifier.find(obj) is None
     assert len(obj.gauss_stylization.styles) == 0  # a failed start changes no setting
 
 
@@ -283,7 +283,7 @@ class _Recorder:
 
 def _bake_panel_rows(addon):
     rows = []
-    addon.bake_ui.VIEW3D_PT_gauss_bake.draw(type("Panel", (), {"layout": _Recorder(rows)})(), bpy.context)
+    addon.bake.bake_ui.VIEW3D_PT_gauss_bake.draw(type("Panel", (), {"layout": _Recorder(rows)})(), bpy.context)
     return rows
 
 
@@ -321,7 +321,7 @@ def test_the_bake_panel_settings_are_what_bake_animation_uses(addon, tmp_path):
 
 
 def test_an_unsaved_file_bakes_to_the_temporary_folder(addon, tmp_path, monkeypatch):
-    monkeypatch.setattr(addon.bake, "blend_saved", lambda: False)  # other tests saved this session's file
+    monkeypatch.setattr(addon.bake.bake, "blend_saved", lambda: False)  # other tests saved this session's file
     filepaths = bpy.context.preferences.filepaths
     previous = filepaths.temporary_directory
     filepaths.temporary_directory = str(tmp_path)
@@ -330,7 +330,7 @@ def test_an_unsaved_file_bakes_to_the_temporary_folder(addon, tmp_path, monkeypa
         bpy.context.scene.frame_start, bpy.context.scene.frame_end = 1, 3
         assert _shows(_bake_panel_rows(addon), "Writes %s" % (tmp_path / "Capsule_gauss.pc2"))
         assert bpy.ops.object.gauss_bake_animation() == {'FINISHED'}
-        assert addon.cache_modifier.find(obj).filepath == str(tmp_path / "Capsule_gauss.pc2")
+        assert addon.mesh.cache_modifier.find(obj).filepath == str(tmp_path / "Capsule_gauss.pc2")
         assert "Capsule_gauss.pc2" in _folder_listing(tmp_path)  # (beside the session folder Blender made there)
     finally:
         filepaths.temporary_directory = previous
@@ -338,17 +338,17 @@ def test_an_unsaved_file_bakes_to_the_temporary_folder(addon, tmp_path, monkeypa
 
 def test_a_cache_modifier_saved_under_the_old_name_is_found_and_renamed(addon, tmp_path):
     obj = rig.bent_capsule()
-    old = obj.modifiers.new(addon.cache_modifier.OLD_NAMES[0], 'MESH_CACHE')
-    assert addon.cache_modifier.find(obj) == old
+    old = obj.modifiers.new(addon.mesh.cache_modifier.OLD_NAMES[0], 'MESH_CACHE')
+    assert addon.mesh.cache_modifier.find(obj) == old
     assert _bake_animation(tmp_path / "c.pc2") == {'FINISHED'}
     caches = [m for m in obj.modifiers if m.type == 'MESH_CACHE']
-    assert len(caches) == 1 and caches[0].name == addon.cache_modifier.NAME == "Gauss Bake"
+    assert len(caches) == 1 and caches[0].name == addon.mesh.cache_modifier.NAME == "Gauss Bake"
 
 
 def test_the_object_deleted_mid_bake_ends_it_leaving_nothing(addon, tmp_path):
     obj = rig.bent_capsule()
     helpers.settings_io.add_slot(obj.gauss_stylization, {"preset": 'CUBE'})
-    job = addon.bake.AnimationBake(bpy.context, obj, 1, 10, str(tmp_path / "c.pc2"), warm_start=False)
+    job = addon.bake.bake.AnimationBake(bpy.context, obj, 1, 10, str(tmp_path / "c.pc2"), warm_start=False)
     job.advance()
     bpy.data.objects.remove(obj)
     with pytest.raises(ReferenceError):

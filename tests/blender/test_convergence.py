@@ -13,13 +13,13 @@ import helpers
 def _kept_sessions(addon, monkeypatch):
     """The sessions scripted runs keep, as they were when kept."""
     kept = []
-    keep = addon.session.Session.keep
+    keep = addon.run.session.Session.keep
 
     def recording(session):
         kept.append(session)
         keep(session)
 
-    monkeypatch.setattr(addon.session.Session, "keep", recording)
+    monkeypatch.setattr(addon.run.session.Session, "keep", recording)
     return kept
 
 
@@ -35,10 +35,10 @@ def _twins(levels=1):
 
 def test_tolerance_comes_from_the_solver(addon):
     gauss_core = addon.native.core()
-    field = addon.schema.field(addon.schema.OBJECT, "tolerance")
+    field = addon.settings.schema.field(addon.settings.schema.OBJECT, "tolerance")
     assert field.default == gauss_core.DEFAULTS["tolerance"]
     assert field.hard == tuple(gauss_core.LIMITS["tolerance"])
-    assert field in addon.schema.SOLVER_SETTERS  # a Solver keyword and a live setter
+    assert field in addon.settings.schema.SOLVER_SETTERS  # a Solver keyword and a live setter
 
 
 def test_zero_steps_run_until_the_tolerance_is_reached(addon, monkeypatch, capfd):
@@ -49,7 +49,7 @@ def test_zero_steps_run_until_the_tolerance_is_reached(addon, monkeypatch, capfd
     steps = session.steps
     assert session.solver.tolerance == np.float32(2e-3)
     assert session.solver.last_reldv < session.solver.tolerance and session.converged
-    assert 1 < steps < addon.schema.UNTIL_CONVERGED_CAP
+    assert 1 < steps < addon.settings.schema.UNTIL_CONVERGED_CAP
     assert "'Suzanne' converged after %d steps" % steps in capfd.readouterr().out
     # It stopped at the first converged step: one step fewer is not converged, and those
     # steps (in other chunks) give the same shape.
@@ -62,7 +62,7 @@ def test_zero_steps_run_until_the_tolerance_is_reached(addon, monkeypatch, capfd
 
 
 def test_a_run_until_converged_stops_at_the_cap(addon, monkeypatch, capfd):
-    monkeypatch.setattr(addon.schema, "UNTIL_CONVERGED_CAP", 7)
+    monkeypatch.setattr(addon.settings.schema, "UNTIL_CONVERGED_CAP", 7)
     obj, twin = _twins()
     kept = _kept_sessions(addon, monkeypatch)
     assert helpers.stylize(0) == {'FINISHED'}
@@ -98,7 +98,7 @@ def test_a_larger_tolerance_stops_sooner(addon, monkeypatch):
 
 
 def test_a_run_until_converged_prints_its_progress(addon, monkeypatch, capfd):
-    monkeypatch.setattr(addon.progress, "SHOW_AFTER", 0.0)
+    monkeypatch.setattr(addon.run.progress, "SHOW_AFTER", 0.0)
     helpers.suzanne(levels=1)
     capfd.readouterr()
     assert helpers.stylize(0) == {'FINISHED'}

@@ -9,8 +9,8 @@ from test_schema import _Layout  # records the rows a panel draws
 
 
 def _session(addon, obj):
-    addon.session.ensure_style_slot(obj.gauss_stylization)
-    return addon.session.Session(obj)
+    addon.run.session.ensure_style_slot(obj.gauss_stylization)
+    return addon.run.session.Session(obj)
 
 
 def _run(addon, obj, switch_at=None, switch_to=None, steps=6):
@@ -76,14 +76,15 @@ def test_the_panel_shows_cubic_lambda_only_for_cubic(addon):
     obj = helpers.suzanne(levels=0)
     rows = []
     layout = _Layout(rows)
-    panel = addon.fields.Panel.METHOD
-    addon.ui._draw_rows(layout, obj, obj.gauss_stylization, addon.schema.OBJECT, panel)
+    panel = addon.settings.fields.Panel.METHOD
+    addon.view.sidebar.draw_rows(layout, obj, obj.gauss_stylization, addon.settings.schema.OBJECT, panel)
     assert rows == ["method"]
     obj.gauss_stylization.method = 'CUBIC'
     rows.clear()
-    addon.ui._draw_rows(layout, obj, obj.gauss_stylization, addon.schema.OBJECT, panel)
+    addon.view.sidebar.draw_rows(layout, obj, obj.gauss_stylization, addon.settings.schema.OBJECT, panel)
     assert rows == ["method", "cubic_lambda"]
     rows.clear()
-    addon.ui._draw_rows(layout, obj, obj.gauss_stylization, addon.schema.OBJECT, addon.fields.Panel.SOLVER)
+    addon.view.sidebar.draw_rows(layout, obj, obj.gauss_stylization, addon.settings.schema.OBJECT,
+                                 addon.settings.fields.Panel.SOLVER)
     assert rows == ["tolerance", "iterations", "keep_volume"]  # Lambda and ADMM Iterations are the Gauss method's
 

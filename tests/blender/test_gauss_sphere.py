@@ -9,7 +9,7 @@ import helpers
 
 
 def test_the_icosphere_is_unit_and_faces_outwards(addon):
-    vertices, triangles = addon.gauss_sphere.icosphere()
+    vertices, triangles = addon.sphere.gauss_sphere.icosphere()
     assert vertices.shape == (2562, 3) and triangles.shape == (5120, 3)
     assert np.allclose(np.linalg.norm(vertices, axis=1), 1.0)
     corners = vertices[triangles]
@@ -18,7 +18,7 @@ def test_the_icosphere_is_unit_and_faces_outwards(addon):
 
 
 def test_pixels_and_directions_correspond(addon):
-    sphere = addon.gauss_sphere
+    sphere = addon.sphere.gauss_sphere
     where = sphere.frame(800, 600, left_inset=40, ui_scale=1.0)
     assert where.x - where.radius >= 40 and where.y - where.radius > 0  # clear of the toolbar and the edge
     rng = np.random.default_rng(3)
@@ -35,7 +35,7 @@ def test_pixels_and_directions_correspond(addon):
 
 
 def test_heat_colours_brighten_with_g_and_clip(addon):
-    colours = addon.gauss_sphere.heat_colours([-1.0, 0.0, 0.5, 0.9, 1.0, 2.0])
+    colours = addon.sphere.gauss_sphere.heat_colours([-1.0, 0.0, 0.5, 0.9, 1.0, 2.0])
     brightness = colours[:, :3].sum(axis=1)
     assert (np.diff(brightness[1:5]) > 0).all()
     assert np.array_equal(colours[0], colours[1]) and np.array_equal(colours[4], colours[5])
@@ -43,14 +43,14 @@ def test_heat_colours_brighten_with_g_and_clip(addon):
 
 
 def test_the_facing_half_is_drawn_alone(addon):
-    vertices, triangles = addon.gauss_sphere.icosphere(2)
-    front = addon.gauss_sphere.facing(vertices, triangles)
+    vertices, triangles = addon.sphere.gauss_sphere.icosphere(2)
+    front = addon.sphere.gauss_sphere.facing(vertices, triangles)
     assert 0.45 < len(front) / len(triangles) < 0.55
     assert (vertices[front].mean(axis=1)[:, 2] > 0).all()
 
 
 def test_face_normal_sample_is_bounded_area_weighted_and_follows_a_run(addon):
-    overlay = addon.sphere_overlay
+    overlay = addon.sphere.sphere_overlay
     obj = helpers.suzanne(levels=2)  # 15,744 triangles
     helpers.add_slot(obj, 'CUBE')
     sample = overlay.face_normal_sample(obj)
@@ -61,9 +61,9 @@ def test_face_normal_sample_is_bounded_area_weighted_and_follows_a_run(addon):
     up = np.abs(overlay.face_normal_sample(slab)[:, 2]) > 0.9
     assert up.mean() > 0.9
     helpers.activate(obj)
-    run = addon.session.Session(obj)
+    run = addon.run.session.Session(obj)
     try:
-        addon.runs.start([obj], _Run(run))
+        addon.run.runs.start([obj], _Run(run))
         before = overlay.face_normal_sample(obj)
         run.step(20)
         after = overlay.face_normal_sample(obj)
@@ -71,7 +71,7 @@ def test_face_normal_sample_is_bounded_area_weighted_and_follows_a_run(addon):
         share = lambda normals: (np.abs(normals).max(axis=1) > np.cos(np.radians(10))).mean()
         assert len(after) == len(before) and share(after) > share(before) + 0.2
     finally:
-        addon.runs.forget(addon.runs.running[obj.as_pointer()])
+        addon.run.runs.forget(addon.run.runs.running[obj.as_pointer()])
         run.cancel()
 
 
@@ -83,7 +83,7 @@ class _Run:
 
 
 def test_style_look_follows_the_slot(addon):
-    overlay = addon.sphere_overlay
+    overlay = addon.sphere.sphere_overlay
     gauss_core = addon.native.core()
     obj = helpers.suzanne(levels=0)
     slot = helpers.add_slot(obj, 'CUBE')
@@ -104,9 +104,9 @@ def test_show_gauss_sphere_is_an_object_setting_off_by_default(addon):
     obj = helpers.suzanne(levels=0)
     assert obj.gauss_stylization.show_gauss_sphere is False
     assert addon.settings_io.to_dict(obj.gauss_stylization)["show_gauss_sphere"] is False
-    assert addon.sphere_overlay.shown_object(_Context(obj)) is None
+    assert addon.sphere.sphere_overlay.shown_object(_Context(obj)) is None
     obj.gauss_stylization.show_gauss_sphere = True
-    assert addon.sphere_overlay.shown_object(_Context(obj)) == obj
+    assert addon.sphere.sphere_overlay.shown_object(_Context(obj)) == obj
 
 
 class _Context:

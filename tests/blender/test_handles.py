@@ -24,23 +24,23 @@ def _pinned_sphere(addon, lam=None, method='GAUSS'):
     if lam is not None:
         settings["lam"] = lam
     helpers.settings_io.apply_dict(obj.gauss_stylization, settings)
-    return obj, addon.session.Session(obj)
+    return obj, addon.run.session.Session(obj)
 
 
 def test_each_connected_part_of_the_pins_is_one_handle(addon):
     triangles = np.array([[0, 1, 2], [2, 3, 4], [5, 6, 7], [7, 8, 9]])
-    parts = addon.handles.pin_parts([9, 0, 4, 7, 3, 6, 2], triangles)
+    parts = addon.handles.handles.pin_parts([9, 0, 4, 7, 3, 6, 2], triangles)
     pins = np.array([9, 0, 4, 7, 3, 6, 2])
     assert [sorted(pins[p]) for p in parts] == [[6, 7, 9], [0, 2, 3, 4]]  # in the order of their first pin
-    assert addon.handles.pin_parts([], triangles) == []
-    assert len(addon.handles.pin_parts([0, 5], triangles)) == 2  # not joined by a triangle
+    assert addon.handles.handles.pin_parts([], triangles) == []
+    assert len(addon.handles.handles.pin_parts([0, 5], triangles)) == 2  # not joined by a triangle
 
 
 @pytest.mark.parametrize("method", ['GAUSS', 'CUBIC'])
 def test_moving_a_handle_moves_its_pins_without_refactoring_and_the_mesh_follows(addon, method):
     obj, run = _pinned_sphere(addon, method=method)
     try:
-        handles = addon.handles.Handles(run)
+        handles = addon.handles.handles.Handles(run)
         assert len(handles.parts) == 2
         top = next(k for k, part in enumerate(handles.parts) if handles.targets[part, 2].mean() > 0)
         run.step(5)
@@ -66,7 +66,7 @@ def test_moving_a_handle_wakes_a_converged_run(addon):
     try:
         run.step_until(2000)
         assert run.converged
-        handles = addon.handles.Handles(run)
+        handles = addon.handles.handles.Handles(run)
         assert handles.move(0, handles.targets[handles.parts[0]] + 0.1)
         assert not run.converged
     finally:
@@ -76,7 +76,7 @@ def test_moving_a_handle_wakes_a_converged_run(addon):
 def test_targets_the_solver_refuses_change_nothing(addon):
     obj, run = _pinned_sphere(addon)
     try:
-        handles = addon.handles.Handles(run)
+        handles = addon.handles.handles.Handles(run)
         kept = handles.targets.copy()
         assert not handles.move(0, np.full((len(handles.parts[0]), 3), 1e20))
         assert np.array_equal(handles.targets, kept) and np.array_equal(run.solver.pin_positions, kept)
@@ -89,7 +89,7 @@ def test_targets_the_solver_refuses_change_nothing(addon):
 def test_cancel_after_dragging_restores_the_mesh_bit_exactly(addon):
     obj, run = _pinned_sphere(addon)
     original = helpers.coords(obj)
-    handles = addon.handles.Handles(run)
+    handles = addon.handles.handles.Handles(run)
     for k in range(1, 6):
         assert handles.move(0, handles.targets[handles.parts[0]] + 0.05)
         run.step()
@@ -104,14 +104,14 @@ def test_cancel_after_dragging_restores_the_mesh_bit_exactly(addon):
 def test_a_changed_pin_group_rebuilds_the_handles(addon):
     obj, run = _pinned_sphere(addon)
     try:
-        handles = addon.handles.Handles(run)
+        handles = addon.handles.handles.Handles(run)
         z = run.arrays.coords[:, 2]
         helpers.add_group(obj, "Top", np.flatnonzero(z > 0.9))
         run.weights = addon.mesh_io.read_group_weights(obj)  # as if the group existed at the start
         obj.gauss_stylization.pin_group = "Top"
         assert run.sync_settings() is None
         assert not handles.current()
-        assert len(addon.handles.Handles(run).parts) == 1
+        assert len(addon.handles.handles.Handles(run).parts) == 1
     finally:
         run.cancel()
 
@@ -126,7 +126,7 @@ def test_lambda_zero_drags_as_plain_arap(addon):
         start = helpers.coords(obj)
         obj.gauss_stylization.styles[0].mu = mu
         run.sync_settings()
-        handles = addon.handles.Handles(run)
+        handles = addon.handles.handles.Handles(run)
         top = next(k for k, part in enumerate(handles.parts) if handles.targets[part, 2].mean() > 0)
         handles.move(top, handles.targets[handles.parts[top]] + [0.5, 0.0, 0.0])
         run.step(300)
@@ -177,10 +177,10 @@ def test_bad_pin_targets_are_refused_and_change_nothing(addon):
 def test_targets_json_names_only_moved_pins(addon):
     obj, run = _pinned_sphere(addon)
     try:
-        assert addon.handles.targets_json([run]) == ""
-        handles = addon.handles.Handles(run)
+        assert addon.run.pin_targets.targets_json([run]) == ""
+        handles = addon.handles.handles.Handles(run)
         handles.move(0, handles.targets[handles.parts[0]] + 0.1)
-        data = json.loads(addon.handles.targets_json([run]))
+        data = json.loads(addon.run.pin_targets.targets_json([run]))
         assert list(data) == [obj.name] and np.allclose(data[obj.name], handles.targets)
     finally:
         run.cancel()
@@ -211,9 +211,9 @@ def _key(kind):
 
 def _grab(addon, run, session, part):
     """As if a press had grabbed ``part`` of ``session``'s handles (a press needs a window)."""
-    tool = addon.handle_tool.tool_of(run)
+    tool = addon.handles.handle_tool.tool_of(run)
     handles = tool.handles_of(session)
-    tool.drag = addon.handles.Drag(handles, part, SimpleNamespace(x=0, y=0), None, (0, 0))
+    tool.drag = addon.handles.handles.Drag(handles, part, SimpleNamespace(x=0, y=0), None, (0, 0))
     return tool, handles
 
 
@@ -223,7 +223,7 @@ def test_a_drag_takes_esc_and_enter_before_the_run_and_each_object_has_its_handl
     first object's pins stay; once the drag is over Esc ends the run."""
     first, first_run = _pinned_sphere(addon)
     second, second_run = _pinned_sphere(addon)
-    modal_events, handle_tool = addon.modal_events, addon.handle_tool
+    modal_events, handle_tool = addon.run.modal_events, addon.handles.handle_tool
     run = _Run([first_run, second_run])
     try:
         first_targets = first_run.solver.pin_positions.copy()
@@ -254,11 +254,11 @@ def test_a_drag_ends_with_its_run_or_its_object(addon):
     run = _Run([session])
     try:
         tool, _handles = _grab(addon, run, session, 0)
-        addon.modal_events.run_ended(run, bpy.context, keep=True)  # on_end
+        addon.run.modal_events.run_ended(run, bpy.context, keep=True)  # on_end
         assert tool.drag is None
         tool, _handles = _grab(addon, run, session, 0)
         bpy.data.objects.remove(obj)
-        assert addon.modal_events.dispatch(run, bpy.context, _key('ESC')) == {'CANCELLED'}
+        assert addon.run.modal_events.dispatch(run, bpy.context, _key('ESC')) == {'CANCELLED'}
         assert tool.drag is None and run.ended == [False]
     finally:
         session.cancel()
@@ -282,10 +282,10 @@ def _draw_pins(addon, monkeypatch):
     drawn = []
     matrix = SimpleNamespace(push_pop=contextlib.nullcontext, multiply_matrix=lambda _matrix: None)
     state = SimpleNamespace(depth_test_set=lambda _mode: None, blend_set=lambda _mode: None)
-    monkeypatch.setattr(addon.handle_tool, "gpu", SimpleNamespace(matrix=matrix, state=state))
-    monkeypatch.setattr(addon.handle_tool.gpu_compat, "draw_points",
+    monkeypatch.setattr(addon.handles.handle_tool, "gpu", SimpleNamespace(matrix=matrix, state=state))
+    monkeypatch.setattr(addon.handles.handle_tool.gpu_compat, "draw_points",
                         lambda points, colour, _size: drawn.append((colour, np.array(points))) if len(points) else None)
-    addon.handle_tool.draw_pins()
+    addon.handles.handle_tool.draw_pins()
     return drawn
 
 
@@ -296,10 +296,10 @@ def _dots(drawn, colour):
 def test_the_dots_are_drawn_from_the_drag_without_reading_the_solver(addon, monkeypatch):
     """At every redraw of a drag the dots come from the handles' own targets: not a copy of the
     solver's arrays. They show where the drag moved the pins, the grabbed handle's brighter."""
-    handle_tool = addon.handle_tool
+    handle_tool = addon.handles.handle_tool
     obj, session = _pinned_sphere(addon)
     run = _Run([session])
-    addon.runs.start([obj], run)
+    addon.run.runs.start([obj], run)
     solver = session.solver
     try:
         tool, handles = _grab(addon, run, session, 0)
@@ -319,7 +319,7 @@ def test_the_dots_are_drawn_from_the_drag_without_reading_the_solver(addon, monk
         assert len(_dots(drawn, handle_tool.GRABBED)) == 0 and len(_dots(drawn, handle_tool.PIN)) == len(expected)
     finally:
         session.solver = solver
-        addon.runs.forget(run)
+        addon.run.runs.forget(run)
         session.cancel()
 
 
@@ -332,12 +332,12 @@ def test_the_dots_of_a_live_run_are_drawn_beside_a_bake(addon, monkeypatch):
     baked, bake = helpers.uv_sphere(8, 4), Bake()
     obj, session = _pinned_sphere(addon)
     run = _Run([session])
-    addon.runs.start([baked], bake)
-    addon.runs.start([obj], run)
+    addon.run.runs.start([baked], bake)
+    addon.run.runs.start([obj], run)
     try:
         drawn = _draw_pins(addon, monkeypatch)
-        assert len(_dots(drawn, addon.handle_tool.PIN)) == len(session.solver.pinned)
+        assert len(_dots(drawn, addon.handles.handle_tool.PIN)) == len(session.solver.pinned)
     finally:
-        addon.runs.forget(run)
-        addon.runs.forget(bake)
+        addon.run.runs.forget(run)
+        addon.run.runs.forget(bake)
         session.cancel()

@@ -37,9 +37,9 @@ def test_keep_volume_changed_during_a_live_run_reaches_the_solver(addon):
     obj = helpers.uv_sphere(24, 12)
     rest = _volume(obj)
     settings = obj.gauss_stylization
-    addon.session.ensure_style_slot(settings)
+    addon.run.session.ensure_style_slot(settings)
     settings.lam = 10.0
-    run = addon.session.Session(obj)
+    run = addon.run.session.Session(obj)
     run.step(20)
     shrunk = _volume(obj) / rest
     settings.keep_volume = True

@@ -14,8 +14,8 @@ import helpers
 
 
 def _session(addon, obj):
-    addon.session.ensure_style_slot(obj.gauss_stylization)
-    return addon.session.Session(obj)
+    addon.run.session.ensure_style_slot(obj.gauss_stylization)
+    return addon.run.session.Session(obj)
 
 
 def test_style_changes_apply_without_refactoring(addon):
@@ -221,7 +221,7 @@ def test_shape_keys_deleted_mid_run_with_shape_key_output(addon):
     run = _session(addon, obj)
     run.step(3)
     obj.shape_key_clear()
-    with pytest.raises(addon.validation.SettingsError, match="'Gauss Stylized' was deleted"):
+    with pytest.raises(addon.settings.validation.SettingsError, match="'Gauss Stylized' was deleted"):
         run.step()
     run.cancel()
     assert obj.data.shape_keys is None and np.array_equal(helpers.coords(obj), start)
@@ -284,11 +284,11 @@ def test_a_long_live_run_keeps_only_the_last_step_and_tick_timings(addon):
     """An artist may leave a live run going for an hour (up to 100 ticks a second): its step and
     tick timings keep the last TIMINGS_KEPT, the newest last (what the status bar shows)."""
     obj = helpers.uv_sphere(8, 4)
-    addon.session.ensure_style_slot(obj.gauss_stylization)
-    schema = addon.schema
+    addon.run.session.ensure_style_slot(obj.gauss_stylization)
+    schema = addon.settings.schema
     obj.gauss_stylization.tolerance = schema.field(schema.OBJECT, "tolerance").hard[0]  # status: ms, not "Converged"
     live = helpers.live_run([obj])
-    session, kept = live.sessions[0], addon.session.TIMINGS_KEPT
+    session, kept = live.sessions[0], addon.run.session.TIMINGS_KEPT
     try:
         for tick in range(kept + 200):
             obj.gauss_stylization.lam = 4.0 + 0.01 * (tick % 2)  # a changed setting: never converged

@@ -31,12 +31,12 @@ def events(addon):
     added = []
 
     def add(handler, order, on_end=None):
-        addon.modal_events.add(handler, order, on_end)
+        addon.run.modal_events.add(handler, order, on_end)
         added.append(handler)
 
-    yield addon.modal_events, add
+    yield addon.run.modal_events, add
     for handler in added:
-        addon.modal_events.remove(handler)
+        addon.run.modal_events.remove(handler)
 
 
 def test_keys_end_the_run_and_undo_cancels_it_saying_so(events):

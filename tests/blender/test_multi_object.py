@@ -130,7 +130,7 @@ def test_live_cancel_restores_all_and_keep_keeps_all(addon):
     live = helpers.live_run([b, a])
     live.tick()
     live.keep()
-    assert addon.rest_store.has_capture(a.data) and addon.rest_store.has_capture(b.data)
+    assert addon.mesh.rest_store.has_capture(a.data) and addon.mesh.rest_store.has_capture(b.data)
 
 
 def test_live_run_goes_on_without_a_deleted_object(addon):
@@ -151,8 +151,8 @@ def test_live_run_goes_on_without_a_deleted_object(addon):
 def test_live_run_cancelled_while_preparing_changes_nothing(addon):
     a, b = _pair(levels=0)
     starts = helpers.coords(a), helpers.coords(b)
-    planned = addon.targets.plan_objects(helpers.Reports(), [b, a])
-    live = addon.live_run.LiveRun(planned)
+    planned = addon.run.targets.plan_objects(helpers.Reports(), [b, a])
+    live = addon.run.live_run.LiveRun(planned)
     live.cancel()
     assert live.setup is None
     assert len(a.gauss_stylization.styles) == 0 and len(b.gauss_stylization.styles) == 0
@@ -171,11 +171,11 @@ def test_each_object_of_a_live_run_finds_its_own_session(addon):
             live.cancel()
 
     run = Run()
-    addon.runs.start([b, a], run)
+    addon.run.runs.start([b, a], run)
     try:
-        assert addon.runs.session_of(a).obj == a and addon.runs.session_of(b).obj == b
-        assert [s.obj for s in addon.runs.live_sessions()] == [b, a]
-        assert addon.runs.session_of(helpers.uv_sphere()) is None
+        assert addon.run.runs.session_of(a).obj == a and addon.run.runs.session_of(b).obj == b
+        assert [s.obj for s in addon.run.runs.live_sessions()] == [b, a]
+        assert addon.run.runs.session_of(helpers.uv_sphere()) is None
     finally:
-        addon.runs.forget(run)
+        addon.run.runs.forget(run)
         live.cancel()

@@ -20,7 +20,7 @@ STEPS = 10
 def _stylized_object(addon, obj):
     """The object the last stylization of ``obj`` wrote to."""
     if obj.gauss_stylization.output == 'NEW_OBJECT':
-        return bpy.data.objects[obj.name + addon.schema.NEW_OBJECT_SUFFIX]
+        return bpy.data.objects[obj.name + addon.settings.schema.NEW_OBJECT_SUFFIX]
     return obj
 
 
@@ -34,7 +34,7 @@ def test_every_layer_survives_the_output(addon, output, use_modifiers):
     assert helpers.stylize(STEPS, output=output, use_modifiers=use_modifiers) == {'FINISHED'}
     written = _stylized_object(addon, obj)
     if output == 'SHAPE_KEY':
-        key = obj.data.shape_keys.key_blocks[addon.output.SHAPE_KEY_NAME]
+        key = obj.data.shape_keys.key_blocks[addon.mesh.output.SHAPE_KEY_NAME]
         assert np.abs(helpers.key_coords(key) - start).max() > 1e-3
     else:
         assert np.abs(helpers.coords(written) - start).max() > 1e-3
@@ -158,8 +158,8 @@ def test_reset_of_a_new_object_puts_its_start_shape_back(addon):
 def _new_object_run(addon, obj):
     settings = obj.gauss_stylization
     settings.use_modifiers, settings.output = True, 'NEW_OBJECT'
-    addon.session.ensure_style_slot(settings)
-    return addon.session.Session(obj)
+    addon.run.session.ensure_style_slot(settings)
+    return addon.run.session.Session(obj)
 
 
 def test_a_cancelled_new_object_run_leaves_nothing_behind(addon):
@@ -229,7 +229,7 @@ def test_a_live_run_cancelled_while_preparing_drops_the_evaluated_copies(addon):
     # cancelled before any Session took them over, they must go too.
     a, b = _subdivided_pair()
     meshes = len(bpy.data.meshes)
-    live = addon.live_run.LiveRun(addon.targets.plan_objects(helpers.Reports(), [b, a]))  # set-up running
+    live = addon.run.live_run.LiveRun(addon.run.targets.plan_objects(helpers.Reports(), [b, a]))  # set-up running
     assert len(bpy.data.meshes) == meshes + 2
     live.cancel()
     assert len(bpy.data.meshes) == meshes

@@ -12,7 +12,7 @@ from panel_recorder import Layout, draw, labels, props
 
 def _all_panels(addon):
     return [addon.ui.VIEW3D_PT_gauss_stylization, addon.ui.VIEW3D_PT_gauss_styles, addon.ui.VIEW3D_PT_gauss_solver,
-            addon.bake_ui.VIEW3D_PT_gauss_bake]
+            addon.bake.bake_ui.VIEW3D_PT_gauss_bake]
 
 
 def _operator_rna(idname):
@@ -29,20 +29,20 @@ def test_every_operator_tooltip_is_one_paragraph_without_the_docstrings_indent(a
 
 
 def test_every_number_shows_its_default_and_smallest_slider_value(addon):
-    schema = addon.schema
-    for table, group in ((schema.OBJECT, addon.properties.GaussSettings),
-                         (schema.SLOT, addon.properties.GaussStyleSlot)):
+    schema = addon.settings.schema
+    for table, group in ((schema.OBJECT, addon.settings.properties.GaussSettings),
+                         (schema.SLOT, addon.settings.properties.GaussStyleSlot)):
         for field in table:
-            if isinstance(field, addon.fields.Float):
+            if isinstance(field, addon.settings.fields.Float):
                 decimals = group.bl_rna.properties[field.name].precision
                 for value in (field.default, field.soft[0]):
                     assert value == 0 or round(value, decimals) != 0, (field.name, value, decimals)
-    tolerance = addon.properties.GaussSettings.bl_rna.properties["tolerance"]
+    tolerance = addon.settings.properties.GaussSettings.bl_rna.properties["tolerance"]
     assert "%.*f" % (tolerance.precision, schema.FACTS.defaults["tolerance"]) != "0.00"
 
 
 def test_the_redo_panel_calls_the_steps_what_the_solver_panel_calls_them(addon):
-    field = addon.schema.field(addon.schema.OBJECT, "iterations")
+    field = addon.settings.schema.field(addon.settings.schema.OBJECT, "iterations")
     redo = _operator_rna("object.gauss_stylize").properties["iterations"].name
     assert redo == field.label == "Script Steps"
     assert "iterations" in props(draw(addon.ui.VIEW3D_PT_gauss_solver, _context_with_object()))
@@ -61,15 +61,15 @@ def test_every_label_fits_the_sidebar_or_wraps(addon):
     obj = helpers.activate(objects[0])
     settings = obj.gauss_stylization
     settings.method = 'CUBIC'
-    ui = addon.ui
-    width = ui.label_width()
+    sidebar = addon.view.sidebar
+    width = sidebar.label_width()
     for panel in _all_panels(addon):
         for text in labels(draw(panel)):
-            assert ui.text_width(text) <= width, (panel.__name__, text, ui.text_width(text), width)
+            assert sidebar.text_width(text) <= width, (panel.__name__, text, sidebar.text_width(text), width)
 
 
 def test_wrapping_breaks_between_words_and_keeps_every_word(addon):
-    wrap = addon.ui.wrap_text
+    wrap = addon.view.sidebar.wrap_text
     text = "Esc: cancel (nothing is written) and more words here"
     lines = wrap(text, 12, len)
     assert " ".join(lines) == text and all(len(line) <= 12 or " " not in line for line in lines)
@@ -118,7 +118,7 @@ def test_the_panel_says_before_the_click_that_the_modifiers_keep_the_result_out_
 def test_a_kept_new_object_hides_the_original(addon):
     obj = helpers.activate(helpers.suzanne(levels=0))
     assert helpers.stylize(2, output='NEW_OBJECT') == {'FINISHED'}
-    new = bpy.data.objects[obj.name + addon.schema.NEW_OBJECT_SUFFIX]
+    new = bpy.data.objects[obj.name + addon.settings.schema.NEW_OBJECT_SUFFIX]
     assert obj.hide_get() and not new.hide_get() and bpy.context.view_layer.objects.active == new
 
 
@@ -131,7 +131,7 @@ def test_a_live_run_shows_its_change_against_the_tolerance(addon):
         assert not any(text.startswith("change") for text, _ in live.panel_lines())  # before the first step
         live.tick(budget=1e9)
         live.tick(budget=1e9)
-        expected = addon.progress.convergence_text(session.reldv, obj.gauss_stylization.tolerance)
+        expected = addon.run.progress.convergence_text(session.reldv, obj.gauss_stylization.tolerance)
         assert expected.startswith("change ") and expected.endswith("\u2192 1.0e-3")
         assert (expected, 'BLANK1') in live.panel_lines() and expected in live.status_text()
     finally:
@@ -142,7 +142,7 @@ def test_a_live_run_shows_its_change_against_the_tolerance(addon):
     (3.14e-3, 1e-3, "change 3.1e-3 \u2192 1.0e-3"), (0.25, 1e-4, "change 2.5e-1 \u2192 1.0e-4"),
     (float("inf"), 1e-3, None)])
 def test_convergence_text(addon, change, tolerance, text):
-    assert addon.progress.convergence_text(change, tolerance) == text
+    assert addon.run.progress.convergence_text(change, tolerance) == text
 
 
 def test_the_pin_hint_shows_only_where_a_run_has_a_pin_group(addon):
@@ -170,15 +170,15 @@ def test_the_pin_hint_shows_only_where_a_run_has_a_pin_group(addon):
 def test_auto_orient_says_the_rotation_in_words(addon, euler, words):
     from mathutils import Euler
     matrix = np.array(Euler(np.radians(euler), 'XYZ').to_matrix())
-    assert addon.orientation.rotation_in_words(matrix).startswith(words)
+    assert addon.sphere.orientation.rotation_in_words(matrix).startswith(words)
 
 
 def test_the_sphere_labels_the_object_axes_at_its_rim(addon):
-    where = addon.gauss_sphere.Frame(100.0, 100.0, 50.0)
-    reach = addon.gauss_sphere.AXIS_LABEL_REACH * 50.0
+    where = addon.sphere.gauss_sphere.Frame(100.0, 100.0, 50.0)
+    reach = addon.sphere.gauss_sphere.AXIS_LABEL_REACH * 50.0
     # Seen from the front (-Y towards the viewer): X right, Z up, Y away from the viewer.
     front = np.array([[1, 0, 0], [0, 0, 1], [0, -1, 0]], float)
-    labels = {name: (x, y, facing) for name, x, y, facing in addon.gauss_sphere.axis_labels(front, where)}
+    labels = {name: (x, y, facing) for name, x, y, facing in addon.sphere.gauss_sphere.axis_labels(front, where)}
     assert labels["X"] == pytest.approx((100 + reach, 100, True))
     assert labels["Z"] == pytest.approx((100, 100 + reach, True))
     assert labels["Y"][:2] == pytest.approx((100, 100)) and labels["Y"][2] is False

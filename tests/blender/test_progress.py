@@ -11,7 +11,7 @@ def _percentages(out, what):
 
 
 def test_a_run_over_half_a_second_prints_progress_every_tenth(addon, monkeypatch, capfd):
-    monkeypatch.setattr(addon.progress, "SHOW_AFTER", 0.0)  # every run counts as long
+    monkeypatch.setattr(addon.run.progress, "SHOW_AFTER", 0.0)  # every run counts as long
     helpers.suzanne(levels=1)
     capfd.readouterr()
     assert helpers.stylize(40) == {'FINISHED'}
@@ -31,7 +31,7 @@ def test_a_short_run_prints_nothing(capfd):
 
 
 def test_progress_text():
-    from gauss_stylization.progress import progress_text
+    from gauss_stylization.run.progress import progress_text
     assert progress_text("Preparing 501,128 vertices", 0.4) == "Preparing 501,128 vertices... 40%"
     assert progress_text("Preparing 501,128 vertices") == "Preparing 501,128 vertices..."
 
@@ -43,8 +43,8 @@ def test_the_set_up_of_several_objects_names_each(addon):
     b.name = "B"
     helpers.add_slot(a, 'CUBE')
     helpers.add_slot(b, 'CUBE')
-    plans = [addon.session.Plan(a), addon.session.Plan(b)]
-    setup = addon.solver_setup.SolverSetup(plans)
+    plans = [addon.run.session.Plan(a), addon.run.session.Plan(b)]
+    setup = addon.run.solver_setup.SolverSetup(plans)
     assert setup.text() in ("Preparing 'A' (1 of 2): 507 vertices", "Preparing 'B' (2 of 2): 482 vertices")
     results = setup.wait()
     assert all(result is not None and not isinstance(result, Exception) for result in results)

@@ -32,14 +32,14 @@ def running(addon):
     def start(obj):
         live = helpers.live_run([obj])
         run = _Run(live)
-        addon.runs.start([obj], run)
+        addon.run.runs.start([obj], run)
         runs.append(run)
         return live
 
     yield start
     for run in runs:
         run.live.cancel()
-        addon.runs.forget(run)
+        addon.run.runs.forget(run)
 
 
 def _saved(tmp_path, name):
@@ -92,7 +92,7 @@ def test_a_save_mid_run_leaves_out_the_new_object(addon, running, tmp_path):
     obj.gauss_stylization.output = 'NEW_OBJECT'
     live = running(obj)
     _step(live)
-    new_name = obj.name + addon.schema.NEW_OBJECT_SUFFIX
+    new_name = obj.name + addon.settings.schema.NEW_OBJECT_SUFFIX
     assert new_name in bpy.data.objects and obj.display_type == 'WIRE'
     display = obj.display_type
     _saved_coords, _keys, objects = _saved(tmp_path, obj.data.name)

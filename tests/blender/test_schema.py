@@ -15,7 +15,7 @@ from blender_process import blender_command
 
 def _rna(addon, name):
     """The registered property ``name`` of the object settings or of a style slot."""
-    for group in (addon.properties.GaussSettings, addon.properties.GaussStyleSlot):
+    for group in (addon.settings.properties.GaussSettings, addon.settings.properties.GaussStyleSlot):
         if name in group.bl_rna.properties:
             return group.bl_rna.properties[name]
     raise KeyError(name)
@@ -111,10 +111,10 @@ LIVE_READOUTS = {
 
 
 def _live_fields(addon):
-    Live = addon.fields.Live
-    return ({("object", f.name) for f in addon.schema.OBJECT if f.live is not Live.NOTHING
-             and not isinstance(f, addon.fields.Slots)}
-            | {("slot", f.name) for f in addon.schema.SLOT if f.live is not Live.NOTHING})
+    Live = addon.settings.fields.Live
+    return ({("object", f.name) for f in addon.settings.schema.OBJECT if f.live is not Live.NOTHING
+             and not isinstance(f, addon.settings.fields.Slots)}
+            | {("slot", f.name) for f in addon.settings.schema.SLOT if f.live is not Live.NOTHING})
 
 
 def test_every_live_setting_has_a_case_below(addon):
@@ -126,9 +126,9 @@ def test_a_readout_setting_changed_mid_run_reaches_the_solver(addon, owner, name
     obj = helpers.suzanne(levels=0)
     helpers.add_slot(obj, 'CUBE')
     settings = obj.gauss_stylization
-    run = addon.session.Session(obj)
+    run = addon.run.session.Session(obj)
     run.step(2)
-    field = addon.schema.field(addon.schema.OBJECT, name)
+    field = addon.settings.schema.field(addon.settings.schema.OBJECT, name)
     field.write(settings, LIVE_READOUTS[owner, name])
     assert run.sync_settings() is None
     assert getattr(run.solver, name) == field.read(settings)
@@ -145,11 +145,12 @@ def test_a_setting_changed_mid_run_reaches_the_solver(addon, owner, name):
     addon.settings_io.apply_dict(obj.gauss_stylization, dict(object_settings, styles=[slot_spec]))
     settings = obj.gauss_stylization
     target = settings if owner == "object" else settings.styles[0]
-    field = addon.schema.field(addon.schema.OBJECT if owner == "object" else addon.schema.SLOT, name)
+    schema = addon.settings.schema
+    field = schema.field(schema.OBJECT if owner == "object" else schema.SLOT, name)
     original = field.read(target)
     results = []
     for change in (False, True):
-        run = addon.session.Session(obj)
+        run = addon.run.session.Session(obj)
         run.step(2)
         if change:
             field.write(target, changed)
@@ -184,7 +185,7 @@ def _slot_rows(addon, preset):
     obj = helpers.suzanne(levels=0)
     slot = helpers.add_slot(obj, preset)
     rows = []
-    addon.ui._draw_rows(_Layout(rows), obj, slot, addon.schema.SLOT, addon.fields.Panel.SLOT)
+    addon.view.sidebar.draw_rows(_Layout(rows), obj, slot, addon.settings.schema.SLOT, addon.settings.fields.Panel.SLOT)
     return rows
 
 
@@ -212,7 +213,7 @@ sys.path.insert(0, sys.argv[-1])
 sys.modules["gauss_core"] = None  # nor a top-level one (an extension's wheel, installed beside it)
 import gauss_stylization
 gauss_stylization.register()
-slot = gauss_stylization.properties.GaussStyleSlot.bl_rna.properties
+slot = gauss_stylization.settings.properties.GaussStyleSlot.bl_rna.properties
 print("PRESETS", [(item.identifier, item.value) for item in slot["preset"].enum_items])
 print("SIGMA", slot["sigma"].default, slot["sigma"].hard_min, slot["sigma"].hard_max)
 bpy.ops.mesh.primitive_cube_add()

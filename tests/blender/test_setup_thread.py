@@ -53,8 +53,8 @@ def _wait(predicate, limit=120.0):
 def test_a_big_set_up_runs_beside_the_main_thread_reports_progress_and_cancels_at_once(addon):
     obj = _grid(600)
     start = helpers.coords(obj)
-    planned = addon.targets.plan_objects(_Reports(), [obj])
-    live = addon.live_run.LiveRun(planned)
+    planned = addon.run.targets.plan_objects(_Reports(), [obj])
+    live = addon.run.live_run.LiveRun(planned)
     assert live.setup.text() == "Preparing {:,} vertices".format(len(start))
     fractions, naps = [], 0
     began = time.monotonic()
@@ -89,7 +89,7 @@ def test_a_pin_group_changed_during_a_live_run_is_prepared_beside_it(addon):
     start = helpers.coords(obj)
     corner = np.flatnonzero((start[:, 0] > 0.5) & (start[:, 1] > 0.5))
     helpers.add_group(obj, "Corner", corner)
-    live = addon.live_run.LiveRun(addon.targets.plan_objects(_Reports(), [obj]))
+    live = addon.run.live_run.LiveRun(addon.run.targets.plan_objects(_Reports(), [obj]))
     _wait(lambda: live.setup.done)
     assert live.finish_setup() == []
     session = live.sessions[0]

@@ -268,8 +268,8 @@ def test_every_style_finds_a_rotation_as_good_as_the_true_one_and_no_larger(addo
     assert bpy.ops.object.gauss_style_auto_orient() == {'FINISHED'}
     found = _orientation(slot)
     style = addon.styles.make_style(gauss_core, slot, rotation=np.eye(3))
-    normals, areas = addon.surface.face_normals(obj)
-    fit = addon.orientation.Fit(style, normals, areas)
+    normals, areas = addon.sphere.surface.face_normals(obj)
+    fit = addon.sphere.orientation.Fit(style, normals, areas)
     assert fit(found[None])[0] >= fit(turn[None])[0] - 1e-5
     assert _angle(found) <= _angle(turn) + 0.5
 

@@ -41,7 +41,7 @@ class _Run:
 
 
 def test_suspend_and_resume_give_back_the_value_and_the_unsaved_mark(addon, preferences):
-    guard = addon.undo_guard
+    guard = addon.run.undo_guard
     guard.suspend()
     guard.suspend()  # twice: still the artist's value saved, not 0
     assert preferences.edit.undo_steps == 0 and not preferences.is_dirty
@@ -52,7 +52,7 @@ def test_suspend_and_resume_give_back_the_value_and_the_unsaved_mark(addon, pref
 
 
 def test_changes_the_artist_made_during_a_run_stay(addon, preferences):
-    guard = addon.undo_guard
+    guard = addon.run.undo_guard
     guard.suspend()
     preferences.view.ui_line_width = 'THICK'  # another preference changed meanwhile: must be saved later
     guard.resume()
@@ -65,7 +65,7 @@ def test_changes_the_artist_made_during_a_run_stay(addon, preferences):
 
 
 def test_undo_is_off_exactly_while_runs_are_registered(addon, preferences):
-    runs = addon.runs
+    runs = addon.run.runs
     a, b = helpers.uv_sphere(), helpers.uv_sphere()
     first, second = _Run(), _Run()
     runs.start([a], first)
@@ -80,28 +80,28 @@ def test_undo_is_off_exactly_while_runs_are_registered(addon, preferences):
 @pytest.mark.parametrize("handler", ["_end_runs_before_undo", "_end_runs_before_redo", "_end_runs_before_load"])
 def test_undo_redo_and_loading_end_runs_and_give_undo_back(addon, preferences, handler):
     run = _Run()
-    addon.runs.start([helpers.uv_sphere()], run)
-    getattr(addon.runs, handler)(None)
-    assert run.stopped == [False] and not addon.runs.running
+    addon.run.runs.start([helpers.uv_sphere()], run)
+    getattr(addon.run.runs, handler)(None)
+    assert run.stopped == [False] and not addon.run.runs.running
     assert preferences.edit.undo_steps == USER_STEPS
 
 
 def test_handlers_are_registered(addon):
-    for name, handler in addon.runs.HANDLERS:
+    for name, handler in addon.run.runs.HANDLERS:
         assert handler in getattr(bpy.app.handlers, name), name
 
 
 def test_undo_comes_back_even_when_ending_a_run_fails(addon, preferences):
     run = _Run(fail=True)
-    addon.runs.start([helpers.uv_sphere()], run)
+    addon.run.runs.start([helpers.uv_sphere()], run)
     with pytest.raises(RuntimeError, match="restoring failed"):
-        addon.runs.stop_all(bpy.context)
-    assert not addon.runs.running and preferences.edit.undo_steps == USER_STEPS
+        addon.run.runs.stop_all(bpy.context)
+    assert not addon.run.runs.running and preferences.edit.undo_steps == USER_STEPS
 
 
 def test_disabling_the_addon_ends_runs_and_gives_undo_back(addon, preferences):
     run = _Run()
-    addon.runs.start([helpers.uv_sphere()], run)
+    addon.run.runs.start([helpers.uv_sphere()], run)
     addon.unregister()
     try:
         assert run.stopped == [False] and preferences.edit.undo_steps == USER_STEPS
@@ -113,12 +113,12 @@ def test_a_second_stylize_waits_for_the_live_run(addon, preferences):
     # Were two runs live, keeping one would push its undo step while undo is still off for the
     # other, and that step would be lost.
     run = _Run()
-    addon.runs.start([helpers.uv_sphere()], run)
+    addon.run.runs.start([helpers.uv_sphere()], run)
     try:
         helpers.suzanne(levels=0)
         assert not bpy.ops.object.gauss_stylize.poll()
         with pytest.raises(RuntimeError, match="already running on other objects"):
             bpy.ops.object.gauss_stylize(iterations=1)
     finally:
-        addon.runs.forget(run)
+        addon.run.runs.forget(run)
     assert bpy.ops.object.gauss_stylize.poll()

@@ -143,7 +143,7 @@ def new_reports():
 
 def live_operator():
     import gauss_stylization
-    return next(iter(gauss_stylization.runs.running.values()), None)
+    return next(iter(gauss_stylization.run.runs.running.values()), None)
 
 
 def wait_steps(count, limit=30.0):

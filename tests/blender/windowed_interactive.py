@@ -19,8 +19,9 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import windowed_driver as d  # noqa: E402  (also sets up the paths and the window options)
 from windowed_actions import area_screenshot  # noqa: E402
 
-from gauss_stylization import (  # noqa: E402  (windowed_driver put the add-on on sys.path)
-    gauss_sphere, handle_tool, handles, native, settings_io, sphere_overlay, styles)
+from gauss_stylization import native, settings_io, styles  # noqa: E402  (windowed_driver put the add-on on sys.path)
+from gauss_stylization.handles import handle_tool, handles  # noqa: E402
+from gauss_stylization.sphere import gauss_sphere, sphere_overlay  # noqa: E402
 
 TIME_LIMIT = 480.0  # seconds (idle: about 1 minute; a busy 2-core machine redraws slowly)
 

@@ -418,7 +418,7 @@ def big_set_up_esc(name):
     original, undo_steps = coords(big), _undo_steps()
     # A fast machine finishes the real set-up before the driver gets to press Esc, so each set-up
     # task is held after its real work until it is cancelled: Esc always meets it preparing.
-    solver_setup, core = addon().solver_setup, addon().native.core()
+    solver_setup, core = addon().run.solver_setup, addon().native.core()
     real_init = solver_setup.BackgroundSetup.__init__
 
     def held(run):
@@ -479,7 +479,7 @@ def _big_set_up_esc_checks(big, original, undo_steps):
 def scripted_run_in_a_window(name):
     """A run that holds the window (a script, the redo panel) shows Blender's progress indicator
     (on the mouse cursor) and sets the status text; afterwards both are gone."""
-    progress = addon().progress
+    progress = addon().run.progress
     shown = []
     real_update = progress.ProgressReport.update
 

@@ -24,8 +24,11 @@ import windowed_driver as d  # noqa: E402  (also sets up the paths and the windo
 from panel_recorder import draw, labels  # noqa: E402
 from windowed_actions import area_screenshot  # noqa: E402
 
-from gauss_stylization import (  # noqa: E402  (windowed_driver put the add-on on sys.path)
-    bake_ui, gauss_sphere, handle_tool, settings_io, sphere_overlay, ui)
+from gauss_stylization import settings_io, ui  # noqa: E402  (windowed_driver put the add-on on sys.path)
+from gauss_stylization.bake import bake_ui  # noqa: E402
+from gauss_stylization.handles import handle_tool  # noqa: E402
+from gauss_stylization.sphere import gauss_sphere, sphere_overlay  # noqa: E402
+from gauss_stylization.view.sidebar import label_width, text_width  # noqa: E402
 
 TIME_LIMIT = 300.0  # seconds (idle: well under a minute)
 SIDEBAR_SHOTS = ("sidebar_idle.png", "sidebar_live_run.png", "sidebar_custom_normals.png", "sidebar_bake.png")
@@ -197,11 +200,11 @@ def labels_fit_the_sidebar(name):
     area, _ = d.view3d()
     too_wide = []
     with bpy.context.temp_override(window=d.window(), area=area, region=region):
-        width = ui.label_width()
+        width = label_width()
         for panel in (ui.VIEW3D_PT_gauss_stylization, ui.VIEW3D_PT_gauss_styles, ui.VIEW3D_PT_gauss_solver,
                       bake_ui.VIEW3D_PT_gauss_bake):
             for text in labels(draw(panel)):
-                if ui.text_width(text) > width:
+                if text_width(text) > width:
                     too_wide.append(text)
     d.check("every label fits the sidebar (%d px for text)" % width, not too_wide, str(too_wide))
     yield from d.end_with('ESC', "Esc after the label check restores the mesh", name, original)

@@ -38,7 +38,7 @@ def new_object_live_run(d):
     """Use Modifiers + New Object: the run writes into '<name>_stylized' live; Esc removes it,
     Enter keeps it, one Ctrl+Z takes it away again. The original never changes."""
     subdivided = _subdivided_suzanne(d)
-    result_name = subdivided + _addon().schema.NEW_OBJECT_SUFFIX
+    result_name = subdivided + _addon().settings.schema.NEW_OBJECT_SUFFIX
     original, shown = coords(bpy.data.objects[subdivided]), evaluated_coords(bpy.data.objects[subdivided])
     counts = (len(bpy.data.objects), len(bpy.data.meshes))
     yield from d.live_run(5)
@@ -84,7 +84,7 @@ def _wait_bake(limit=60.0):
 
 
 def d_running():
-    return any(type(run).__name__.startswith("OBJECT_OT_gauss_bake") for run in _addon().runs.running.values())
+    return any(type(run).__name__.startswith("OBJECT_OT_gauss_bake") for run in _addon().run.runs.running.values())
 
 
 def bakes(d):
@@ -112,7 +112,7 @@ def bakes(d):
     d.press('ESC', *d.viewport_point())
     yield from _wait_bake()
     d.check("Esc cancels the bake: no file, no modifier, the frame as it was",
-            not d_running() and os.listdir(folder) == [] and _addon().cache_modifier.find(capsule) is None
+            not d_running() and os.listdir(folder) == [] and _addon().mesh.cache_modifier.find(capsule) is None
             and bpy.context.scene.frame_current == 30)
 
     with d.override():
@@ -120,7 +120,7 @@ def bakes(d):
                                             warm_start=False)
     yield from screenshot_window(d, "bake_running.png")
     yield from _wait_bake()
-    modifier = _addon().cache_modifier.find(capsule)
+    modifier = _addon().mesh.cache_modifier.find(capsule)
     d.check("a finished bake writes the file and adds the Mesh Cache modifier last",
             os.listdir(folder) == ["capsule.pc2"] and modifier is not None and capsule.modifiers[-1] == modifier)
     frames = _addon().pc2.read(path).frames
@@ -132,7 +132,7 @@ def bakes(d):
     yield 0.5
     capsule = bpy.data.objects["Capsule"]
     d.check("one Ctrl+Z after the bake removes its modifier (the file stays)",
-            _addon().cache_modifier.find(capsule) is None and d.marker() == 6 and os.path.isfile(path))
+            _addon().mesh.cache_modifier.find(capsule) is None and d.marker() == 6 and os.path.isfile(path))
     os.remove(path)
     os.rmdir(folder)
     for name in ("Capsule", "Rig"):

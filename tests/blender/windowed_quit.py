@@ -43,7 +43,7 @@ def quit_mid_run():
     state = {"ticks": 0}
 
     def step():
-        runs = gauss_stylization.runs.live_runs()
+        runs = gauss_stylization.run.runs.live_runs()
         if state["ticks"] == 0:
             with bpy.context.temp_override(window=window, area=area, region=region):
                 bpy.ops.object.gauss_stylize('INVOKE_DEFAULT')

@@ -223,7 +223,7 @@ def save_during_a_bake(name):
     deadline = time.monotonic() + 30.0
     bake = None
     while time.monotonic() < deadline:
-        bake = next(iter(addon().runs.running.values()), None)
+        bake = next(iter(addon().run.runs.running.values()), None)
         if bake is None or bake._job.done >= 3:
             break
         yield 0.1
@@ -235,13 +235,13 @@ def save_during_a_bake(name):
     yield 0.5
     done = bake._job.done if bake is not None else 0
     yield 0.5
-    check("Ctrl+S during the bake lets it go on", bake is not None and addon().runs.live_runs() == [bake]
+    check("Ctrl+S during the bake lets it go on", bake is not None and addon().run.runs.live_runs() == [bake]
           and bake._job.done > done)
     text = new_reports()
     check("... and says what was saved", "as before the bake" in text, repr(text[-300:]))
     press('ESC', *viewport_point())
     yield 0.5
-    check("Esc cancels the bake and puts the frame back", not addon().runs.running and scene.frame_current == 7)
+    check("Esc cancels the bake and puts the frame back", not addon().run.runs.running and scene.frame_current == 7)
     reopen(path)
     yield 0.5
     check("the reopened file holds the scene frame of before the bake", bpy.context.scene.frame_current == 7,

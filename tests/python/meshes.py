@@ -9,7 +9,7 @@ def _gauss_sphere():
     """The add-on's gauss_sphere.py (numpy only), loaded by path: its subdivided spheres are the
     ones the Gauss sphere overlay draws, so there is one implementation."""
     path = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
-                        "python_addon", "gauss_stylization", "gauss_sphere.py")
+                        "python_addon", "gauss_stylization", "sphere", "gauss_sphere.py")
     spec = importlib.util.spec_from_file_location("gauss_sphere_for_tests", path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)

@@ -25,6 +25,10 @@ ADDON_MIN = (3, 4)  # an add-on that needs Blender 3.4 or later
 PYTHON = "%d.%d" % sys.version_info[:2]
 VERSION = ".".join(str(part) for part in package_addon.addon_info()["version"])
 SCRIPT = REPO / "scripts" / "package_addon.py"
+# Every Python file of the add-on, its sub-packages' too ("run/session.py"): what each zip must hold.
+ADDON_SOURCES = sorted(path.relative_to(REPO / "python_addon" / "gauss_stylization").as_posix()
+                       for path in (REPO / "python_addon" / "gauss_stylization").rglob("*.py")
+                       if "__pycache__" not in path.parts)
 
 
 def test_blender_ranges_follow_the_python_version():
@@ -89,6 +93,7 @@ def test_one_extension_zip_per_platform_with_its_own_wheel(packaged):
         assert [name for name in names if name.startswith("wheels/")] == ["wheels/" + wheel]
         assert ".pc2" in manifest["permissions"]["files"]  # bakes write .pc2 files
         assert {"__init__.py", "native.py", "core_facts.json", "README.txt", "blender_manifest.toml"} <= set(names)
+        assert set(ADDON_SOURCES) <= set(names) and "run/session.py" in names  # the sub-packages too
         assert not [name for name in names if name.startswith("gauss_core")]  # the module comes as the wheel
 
 
@@ -122,6 +127,7 @@ def test_classic_zips_per_wheel(packaged):
         modules = [name for name in names if name.startswith("gauss_stylization/gauss_core")]
         assert len(modules) == 1 and modules[0].endswith(".so"), modules
         assert "gauss_stylization/__init__.py" in names and "gauss_stylization/core_facts.json" in names
+        assert {"gauss_stylization/" + name for name in ADDON_SOURCES} <= set(names)  # the sub-packages too
         assert not [name for name in names if name.endswith("blender_manifest.toml")]
         assert "official Blender %s" % package_addon.releases(first, last) in readme
 

@@ -1,4 +1,4 @@
-"""The add-on's .pc2 writer and reader (python_addon/gauss_stylization/pc2.py), without Blender."""
+"""The add-on's .pc2 writer and reader (python_addon/gauss_stylization/bake/pc2.py), without Blender."""
 
 import importlib.util
 import os
@@ -9,7 +9,7 @@ import pytest
 
 from conftest import REPO
 
-_SPEC = importlib.util.spec_from_file_location("pc2", REPO / "python_addon" / "gauss_stylization" / "pc2.py")
+_SPEC = importlib.util.spec_from_file_location("pc2", REPO / "python_addon" / "gauss_stylization" / "bake" / "pc2.py")
 pc2 = importlib.util.module_from_spec(_SPEC)
 _SPEC.loader.exec_module(pc2)
 

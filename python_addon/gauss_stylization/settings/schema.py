@@ -2,8 +2,8 @@
 
 The PropertyGroups (properties.py), the JSON round-trip and the settings writer
 (settings_io.py), the validation before a run (validation.py), what a live run
-does when a setting changes (session.py) and the panel rows (ui.py) are all
-derived from these tables. Defaults and hard ranges of what the solver owns
+does when a setting changes (run/session.py) and the panel rows (view/sidebar.py)
+are all derived from these tables. Defaults and hard ranges of what the solver owns
 (lam, sigma, mu, axis_contribution, admm_iterations, cubic_lambda, tolerance; the default of
 keep_volume), the preset registry and the methods come from the solver (native.facts()), never from here.
 
@@ -11,7 +11,7 @@ A new setting is one line in its table (kinds: fields.py), plus its use in the
 solver call for slot fields (styles.make_style); see python_addon/README.md.
 """
 
-from . import native
+from .. import native
 from .fields import (
     Bool, Choice, Direction, Euler, FilePath, Float, Index, Int, Live, Normals, Panel, Slots, Text, VertexGroup,
 )

@@ -27,10 +27,12 @@ import tempfile
 
 import bpy
 
-from . import cache_modifier, pc2, schema, source as sources
-from .errors import SettingsError
-from .session import Plan, Session
-from .settings_io import to_dict
+from ..errors import SettingsError
+from ..mesh import cache_modifier, source as sources
+from ..run.session import Plan, Session
+from ..settings import schema
+from ..settings.settings_io import to_dict
+from . import pc2
 
 DEFAULT_NAME = "%s_gauss.pc2"  # % the object's name made file-safe
 DEFAULT_PATH = "//" + DEFAULT_NAME  # next to the .blend file

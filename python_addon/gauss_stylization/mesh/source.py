@@ -12,8 +12,8 @@ import copy
 import bpy
 import numpy as np
 
+from ..errors import SettingsError
 from . import mesh_io
-from .errors import SettingsError
 
 
 class Source:

@@ -2,11 +2,11 @@
 
 import bpy
 
-from . import bake, bake_operators, cache_modifier, schema
-from .fields import Panel
-# The sidebar's own sub-panel mix-in and row drawing, so this panel looks and behaves like the others.
-from .ui import _GaussSubPanel as GaussSubPanel, _draw_rows as draw_rows, _mesh_object as mesh_object, \
-    _split_column as split_column, wrapped_label
+from ..mesh import cache_modifier
+from ..settings import schema
+from ..settings.fields import Panel
+from ..view.sidebar import GaussSubPanel, draw_rows, mesh_object, split_column, wrapped_label  # as every Gauss panel
+from . import bake, bake_operators
 
 
 class VIEW3D_PT_gauss_bake(GaussSubPanel, bpy.types.Panel):

@@ -14,13 +14,15 @@ import time
 import bpy
 from bpy.props import IntProperty, StringProperty
 
-from . import bake, runs, schema
-from .errors import NativeModuleError, SettingsError
-from .operators import TICK_SECONDS  # the live run's timer: the same responsiveness
-from .progress import ProgressReport
-from .session import ensure_style_slot
-from .targets import stylize_problem
-from .validation import object_problem, poll_result
+from ..errors import NativeModuleError, SettingsError
+from ..run import runs
+from ..run.live_run import TICK_SECONDS  # the live run's timer: the same responsiveness
+from ..run.progress import ProgressReport
+from ..run.session import ensure_style_slot
+from ..run.targets import stylize_problem
+from ..settings import schema
+from ..settings.validation import object_problem, poll_result
+from . import bake
 
 TICK_BUDGET = 0.1  # seconds of baking per tick (at least one frame), so the UI stays responsive
 FRAME_LIMIT = schema.MAX_FRAME

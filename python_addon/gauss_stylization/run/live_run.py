@@ -16,13 +16,14 @@ that, then it resumes by itself.
 import time
 from collections import deque
 
-from .errors import SettingsError
+from ..errors import SettingsError
+from ..settings.settings_io import to_dict
 from .progress import convergence_text, progress_text
 from .session import TIMINGS_KEPT, Session
-from .settings_io import to_dict
 from .solver_setup import SolverSetup
 from .targets import TITLE
 
+TICK_SECONDS = 0.01  # the timer of a run in the UI (a Stylize, a bake): how often it gets a tick
 TICK_BUDGET = 1.0 / 30.0  # seconds of solver steps per tick before the rest wait for the next one
 CONVERGED = "Converged"  # status bar and panel: the object is not stepped until something changes
 

@@ -22,8 +22,9 @@ pointer, and writing through it crashed Blender.
 import bpy
 import numpy as np
 
-from . import cache_modifier, mesh_io, schema
-from .errors import SettingsError
+from ..errors import SettingsError
+from ..settings import schema
+from . import cache_modifier, mesh_io
 
 SHAPE_KEY_NAME = "Gauss Stylized"
 BASIS_NAME = "Basis"

@@ -15,9 +15,10 @@ stay grabbable.
 
 import gpu
 
-from . import gpu_compat, modal_events, runs
+from ..run import modal_events, runs
+from ..view import gpu_compat
+from ..view.viewport import free_viewport_at, redraw_viewports, viewport_region_at
 from .handles import AXES, Drag, Handles
-from .viewport import free_viewport_at, redraw_viewports, viewport_region_at
 
 PIN, GRABBED, EDGE = (1.0, 0.55, 0.1, 1.0), (1.0, 1.0, 0.35, 1.0), (0.0, 0.0, 0.0, 1.0)
 DOT_PX, EDGE_PX = 7.0, 10.0

@@ -13,10 +13,14 @@ import bpy
 import gpu
 import numpy as np
 
-from . import directions, gauss_sphere, gpu_compat, native, runs, styles, surface
-from .errors import NativeModuleError, SettingsError
-from .fields import read_all
-from .schema import CUSTOM
+from .. import native
+from ..errors import NativeModuleError, SettingsError
+from ..run import runs
+from ..settings import styles
+from ..settings.fields import read_all
+from ..settings.schema import CUSTOM
+from ..view import gpu_compat
+from . import directions, gauss_sphere, surface
 
 MAX_POINTS = 2000  # face normals drawn at most (a sample weighted by area)
 BACKDROP = (0.08, 0.08, 0.08, 0.55)

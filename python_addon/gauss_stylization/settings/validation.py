@@ -7,8 +7,8 @@ vertex groups, custom normals) come with their fields (fields.py, schema.py).
 
 import numpy as np
 
+from ..errors import SettingsError
 from . import schema
-from .errors import SettingsError
 from .fields import Where, check_all
 
 

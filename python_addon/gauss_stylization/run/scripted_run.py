@@ -8,16 +8,16 @@ an object runs until converged (its last step changed it by less than its
 Tolerance), at most schema.UNTIL_CONVERGED_CAP steps. An object that
 cannot be set up or fails while stepping is restored and skipped with a message
 naming it; the others are kept. The operator's one undo step covers them all.
-Pin targets (handles.targets_json's text) move the named objects' pins before
+Pin targets (pin_targets.targets_json's text) move the named objects' pins before
 the first step; targets that cannot be used stop the whole run, nothing changed.
 """
 
 import math
 import time
 
-from . import schema
-from .errors import SettingsError
-from .handles import apply_targets_json
+from ..errors import SettingsError
+from ..settings import schema
+from .pin_targets import apply_targets_json
 from .progress import ProgressReport
 from .session import Session
 from .solver_setup import SolverSetup

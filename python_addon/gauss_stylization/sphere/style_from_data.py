@@ -6,10 +6,12 @@ import numpy as np
 from bpy.props import IntProperty, StringProperty
 from mathutils import Matrix
 
-from . import directions, native, orientation, schema, settings_io, styles, surface
-from .errors import NativeModuleError, SettingsError
-from .validation import poll_result
-from .viewport import redraw_sidebars
+from .. import native
+from ..errors import NativeModuleError, SettingsError
+from ..settings import schema, settings_io, styles
+from ..settings.validation import poll_result
+from ..view.viewport import redraw_sidebars
+from . import directions, orientation, surface
 
 MAX_DIRECTIONS = 32  # default number of directions taken from an example
 

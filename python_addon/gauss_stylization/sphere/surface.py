@@ -8,7 +8,9 @@ keys are not mixed in).
 
 import numpy as np
 
-from . import directions, mesh_io, runs
+from ..mesh import mesh_io
+from ..run import runs
+from . import directions
 
 
 _triangles = {}  # "key": a mesh's identity and counts, "triangles": its loop triangles

@@ -7,10 +7,10 @@ target) is skipped with a message naming it while the others run; only when
 none is left does Stylize fail.
 """
 
+from ..errors import NativeModuleError, SettingsError
+from ..settings.validation import object_problem
 from . import runs
-from .errors import NativeModuleError, SettingsError
 from .session import Plan, ensure_style_slot
-from .validation import object_problem
 
 TITLE = "Gauss Stylize"  # what the status bar, progress lines and messages call a run
 

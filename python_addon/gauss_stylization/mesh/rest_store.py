@@ -8,9 +8,9 @@ and undo, and are read back as numbers only (no eval).
 
 import numpy as np
 
+from ..errors import SettingsError
 from . import mesh_io
 from .output import target_key
-from .errors import SettingsError
 
 COORDS = "_gauss_rest_co"
 TARGET = "_gauss_rest_target"

@@ -1,6 +1,6 @@
 """Kinds of settings: how one field of the schema (schema.py) becomes a Blender
 property, a plain value (JSON round-trip, live-change detection), a check with
-an artist-readable message, and a panel row (drawn by ui.py after ``widget``).
+an artist-readable message, and a panel row (drawn by view/sidebar.py after ``widget``).
 
 A field knows nothing of the others; the generic walks at the bottom
 (read_all, write_all, check_all, changes) run over a table of fields.
@@ -15,8 +15,8 @@ from bpy.props import (
     StringProperty,
 )
 
-from . import native
-from .errors import SettingsError
+from .. import native
+from ..errors import SettingsError
 
 
 class Live(enum.Enum):
@@ -29,7 +29,7 @@ class Live(enum.Enum):
 
 
 class Panel(enum.Enum):
-    """Where a field's row is drawn (ui.py), in schema order."""
+    """Where a field's row is drawn (the panels of ui.py and bake/bake_ui.py), in schema order."""
     MAIN = "main"       # Gauss Stylization panel, under Stylize / Reset
     METHOD = "method"   # Styles sub-panel, above the slot list
     SPHERE = "sphere"   # Styles sub-panel, under From Object / Auto Orient (shown before any slot exists)

@@ -25,8 +25,8 @@ context, keep)``, if given, is called once when the run ends, however it ends,
 before the meshes are kept or restored.
 """
 
+from ..view.viewport import drag_distance_exceeded, free_viewport_at
 from .runs import UNDO_CANCELLED
-from .viewport import drag_distance_exceeded, free_viewport_at
 
 DRAGS = 50      # a drag in progress (a pin handle): its Esc puts it back, its Enter drops it
 KEYS = 100      # Enter, Esc, Ctrl+Z, Ctrl+Shift+Z, Tab

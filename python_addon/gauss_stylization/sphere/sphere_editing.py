@@ -13,9 +13,11 @@ A live run picks an edit up at its next step (custom normals rebuild its styles)
 import bpy
 import numpy as np
 
-from . import gauss_sphere, modal_events, runs, sphere_overlay, styles
-from .schema import CUSTOM
-from .viewport import viewport_region_at
+from ..run import modal_events, runs
+from ..settings import styles
+from ..settings.schema import CUSTOM
+from ..view.viewport import viewport_region_at
+from . import gauss_sphere, sphere_overlay
 
 DOT_PICK_PX = 10.0   # a press this close to a dot (times the UI scale) grabs it
 BUTTONS = ('LEFTMOUSE', 'RIGHTMOUSE')

@@ -15,7 +15,7 @@ meanwhile (wait()). The thread touches no Blender data.
 
 import threading
 
-from .errors import SettingsError
+from ..errors import SettingsError
 
 POLL_SECONDS = 0.05  # how often wait() looks at the progress
 

@@ -19,12 +19,14 @@ from collections import deque
 
 import numpy as np
 
-from . import mesh_io, native, output, rest_store, schema, source as sources, styles
-from .errors import SettingsError
-from .fields import Live, changes
-from .settings_io import add_slot, to_dict
+from .. import native
+from ..errors import SettingsError
+from ..mesh import mesh_io, output, rest_store, source as sources
+from ..settings import schema, styles
+from ..settings.fields import Live, changes
+from ..settings.settings_io import add_slot, to_dict
+from ..settings.validation import check_coordinates, check_object, check_pins, check_settings
 from .solver_setup import PinsSetup
-from .validation import check_coordinates, check_object, check_pins, check_settings
 
 # A result outside the rest mesh's coordinate range widened by this many mesh sizes is treated
 # as a blow-up: the solver keeps outputs within a few sizes, so this only catches a defect.

@@ -2,8 +2,8 @@
 
 import numpy as np
 
+from ..errors import SettingsError
 from . import schema
-from .errors import SettingsError
 from .fields import Live, Where, check_all
 from .schema import CUSTOM, PIN_THRESHOLD, REGION_THRESHOLD
 
