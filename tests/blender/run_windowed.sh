@@ -1,7 +1,11 @@
 #!/bin/sh
-# Drive the live (modal) Stylize operator in a real Blender window under Xvfb, in six parts:
+# Drive the live (modal) Stylize operator in a real Blender window under Xvfb, in seven parts
+# (windowed_kit.py: the helpers they share):
 #   windowed_driver.py       the basics (keys, clicks, shape keys, deleting things, files)
-#   windowed_live_run.py     undo during runs, the gizmo and other clicks, several objects, messages
+#   windowed_live_run.py     undo during runs, the gizmo and other clicks, several objects, messages,
+#                            converging
+#   windowed_run_endings.py  Esc during a big set-up, a scripted run's progress, undo steps given back
+#                            after every way a run ends
 #   windowed_interactive.py  the Gauss sphere overlay and editing on it, pin handles dragged live
 #   windowed_panel.py        the sidebar redrawn by operators, labels that fit it, the sphere's highlight
 #                            and axis labels, the gpu state after draw callbacks, sidebar screenshots
@@ -47,6 +51,7 @@ driver() {  # $1: driver script, $2: its result file in $SHOTS
 
 driver windowed_driver.py windowed_result.txt
 driver windowed_live_run.py windowed_live_run_result.txt
+driver windowed_run_endings.py windowed_run_endings_result.txt
 driver windowed_interactive.py windowed_interactive_result.txt
 driver windowed_panel.py windowed_panel_result.txt
 driver windowed_undo_save.py windowed_undo_save_result.txt

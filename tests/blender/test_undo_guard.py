@@ -1,6 +1,6 @@
 """Undo is off while a live run writes mid-run shapes, and the artist's undo_steps (and the
 preferences' unsaved mark) come back on every way runs end. The windowed
-tests (windowed_live_run.py) end real runs by each key and click; these cover the module
+tests (windowed_run_endings.py) end real runs by each key and click; these cover the module
 state and the handlers without a window."""
 
 import bpy

@@ -1,6 +1,6 @@
 """The live run in a real window, third part: the interactive tools: the Gauss
 sphere overlay, editing on it, and dragging pin handles during a live run. Run by
-run_windowed.sh after windowed_driver.py, whose helpers (check, press, window, view3d,
+run_windowed.sh after windowed_run_endings.py; windowed_kit.py's helpers (check, press, window, view3d,
 live_run, wait_steps, ...) the scenarios use as ``d``; every press and drag is simulated:
 
     blender --factory-startup --enable-event-simulate -P tests/blender/windowed_interactive.py -- BUILD_DIR
@@ -16,10 +16,10 @@ import bpy
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import windowed_driver as d  # noqa: E402  (also sets up the paths and the window options)
+import windowed_kit as d  # noqa: E402  (also sets up the paths and the window options)
 from windowed_actions import area_screenshot  # noqa: E402
 
-from gauss_stylization import native, settings_io, styles  # noqa: E402  (windowed_driver put the add-on on sys.path)
+from gauss_stylization import native, settings_io, styles  # noqa: E402  (windowed_kit put the add-on on sys.path)
 from gauss_stylization.handles import handle_tool, handles  # noqa: E402
 from gauss_stylization.sphere import gauss_sphere, sphere_overlay  # noqa: E402
 

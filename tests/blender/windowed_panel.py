@@ -2,7 +2,7 @@
 label fits the sidebar's default width, the Gauss sphere highlights the selected custom normal
 and labels the axes, draw callbacks leave the gpu state as they found it; and screenshots of
 the sidebar (idle, live run, a Custom slot with 20 normals, the Bake panel). Run by
-run_windowed.sh after the other parts, with windowed_driver.py's helpers as ``d``:
+run_windowed.sh after the other parts, with windowed_kit.py's helpers as ``d``:
 
     blender --factory-startup --enable-event-simulate -P tests/blender/windowed_panel.py -- BUILD_DIR
 
@@ -20,11 +20,11 @@ import gpu
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import windowed_driver as d  # noqa: E402  (also sets up the paths and the window options)
+import windowed_kit as d  # noqa: E402  (also sets up the paths and the window options)
 from panel_recorder import draw, labels  # noqa: E402
 from windowed_actions import area_screenshot  # noqa: E402
 
-from gauss_stylization import settings_io, ui  # noqa: E402  (windowed_driver put the add-on on sys.path)
+from gauss_stylization import settings_io, ui  # noqa: E402  (windowed_kit put the add-on on sys.path)
 from gauss_stylization.bake import bake_ui  # noqa: E402
 from gauss_stylization.handles import handle_tool  # noqa: E402
 from gauss_stylization.sphere import gauss_sphere, sphere_overlay  # noqa: E402

@@ -1,8 +1,7 @@
 """Windowed scenarios of New Object output and the bakes (run by windowed_driver.py).
 
-``run(d)`` is a generator like the driver's scenarios; ``d`` holds the driver's
-helpers (press, live_run, wait_stopped, check, ...), passed in because the
-driver runs as Blender's -P script and cannot be imported.
+``run(d)`` is a generator like the driver's scenarios; ``d`` is windowed_kit.py, the drivers'
+helpers (press, live_run, wait_stopped, check, ...).
 """
 
 import os

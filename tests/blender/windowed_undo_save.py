@@ -1,5 +1,5 @@
 """The live run in a real window, undo and saving: nothing the artist had is lost by an undo, a
-deletion or a save in the middle of a run. Run by run_windowed.sh; uses windowed_driver.py's helpers:
+deletion or a save in the middle of a run. Run by run_windowed.sh; uses windowed_kit.py's helpers:
 
     blender --factory-startup --enable-event-simulate -P tests/blender/windowed_undo_save.py -- BUILD_DIR
 
@@ -25,26 +25,15 @@ import bpy
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import windowed_driver as kit  # noqa: E402  (also sets up the paths and the window options)
-from windowed_driver import (  # noqa: E402
-    check, coords, live_operator, live_run, marker, mesh_coords, new_reports, override, press, push_undo, set_marker,
-    viewport_point, wait_steps, wait_stopped, window)
+import windowed_kit as kit  # noqa: E402  (also sets up the paths and the window options)
+from windowed_kit import (  # noqa: E402
+    addon, check, coords, live_operator, live_run, marker, mesh_coords, new_reports, override, press, push_undo,
+    set_marker, viewport_point, wait_steps, wait_stopped, window)
 from scene_kit import activate, import_obj  # noqa: E402
-from windowed_actions import move_with_g  # noqa: E402
+from windowed_actions import key, move_with_g  # noqa: E402
 
 TIME_LIMIT = 600.0  # seconds (idle machine: about a minute and a half)
 FOLDER = tempfile.mkdtemp(prefix="gauss_undo_save_")
-
-
-def addon():
-    import gauss_stylization  # windowed_driver put BUILD/addon on sys.path
-    return gauss_stylization
-
-
-def key(event_type, **modifiers):
-    """Generator: a key pressed over the viewport, then time for Blender to act on it."""
-    press(event_type, *viewport_point(), **modifiers)
-    yield 0.5
 
 
 def state(name):
@@ -309,24 +298,18 @@ def delete_first_run_after_a_move(name):
     activate(bpy.data.objects[name])
 
 
+def run_scenario(scenario_name, name, _prepared):
+    activate(bpy.data.objects[name])
+    return globals()[scenario_name](name)
+
+
 def scenario():
-    started = time.monotonic()
-    name = kit.set_up()
-    yield 1.0
-    yield from kit.open_gauss_tab()
-    addon().settings_io.add_slot(bpy.data.objects[name].gauss_stylization, {"preset": 'CUBE'})
-    push_undo("Cube style")
-    only = [n for n in os.environ.get("GAUSS_WINDOWED_ONLY", "").split(",") if n]
     try:
-        for scenario_name in ("autosave_waits_for_the_run",) + SCENARIOS:
-            if (only or scenario_name not in SCENARIOS) and scenario_name not in only:
-                continue
-            print("-- %s (%.0f s)" % (scenario_name, time.monotonic() - started), flush=True)
-            activate(bpy.data.objects[name])
-            yield from globals()[scenario_name](name)
+        seconds = yield from kit.cube_style_scenarios(SCENARIOS, run_scenario,
+                                                      on_demand=("autosave_waits_for_the_run",))
     finally:
         shutil.rmtree(FOLDER, ignore_errors=True)
-    print("windowed_undo_save: %.0f s" % (time.monotonic() - started), flush=True)
+    print("windowed_undo_save: %.0f s" % seconds, flush=True)
 
 
 kit.start(scenario(), "windowed_undo_save_result.txt", time_limit=TIME_LIMIT)
