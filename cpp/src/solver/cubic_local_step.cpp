@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "gauss/solver/closest_rotation.h"
+#include "gauss/solver/cotangent_weights.h"
 #include "gauss/util/parallel.h"
 
 namespace gauss {
@@ -52,6 +53,7 @@ CubicLocalStep::CubicLocalStep(const MeshTopology& topo, const std::vector<Vecto
     // Faces that cancel out (a folded sheet, a zero-area star) leave no direction to stylize.
     if (std::isfinite(len) && len > 1e-12 * twice_area && len > 1e-300) normal_[v] = sum / len;
   }
+  build_global_rhs_stars(topo, rest);
   weight_.assign(nV, 0.0);
   frame_.assign(nV, 0);
   frames_.assign(1, Matrix3d::Identity());
@@ -62,10 +64,43 @@ CubicLocalStep::CubicLocalStep(const MeshTopology& topo, const std::vector<Vecto
   reset();
 }
 
+void CubicLocalStep::build_global_rhs_stars(const MeshTopology& topo, const std::vector<Vector3d>& rest) {
+  const int nV = topo.num_vertices;
+  const int nF = static_cast<int>(topo.faces.size());
+  // Each face's corner vectors (w d^_prev - w d^_next) / 3, with the Laplacian's weights.
+  std::vector<std::array<Vector3d, 3>> corner(nF);
+  for (int f = 0; f < nF; ++f) {
+    const auto& t = topo.faces[f];
+    Vector3d e[3];
+    for (int k = 0; k < 3; ++k) e[k] = rest[t[(k + 1) % 3]] - rest[t[k]];
+    const TriangleWeights tw = cotangent_weights(e);
+    // Corner k is the head of slot k-1 and the tail of slot k.
+    for (int k = 0; k < 3; ++k) corner[f][k] = (tw.w[(k + 2) % 3] * e[(k + 2) % 3] - tw.w[k] * e[k]) / 3.0;
+  }
+  star_start_.assign(nV + 1, 0);
+  star_.clear();
+  star_.reserve(2 * topo.edges.size() + nV);
+  std::vector<StarTerm> terms;  // one vertex's, before merging
+  for (int v = 0; v < nV; ++v) {
+    terms.clear();
+    for (int i = topo.vertex_corner_start[v]; i < topo.vertex_corner_start[v + 1]; ++i) {
+      const int f = topo.vertex_corners[i] / 3, k = topo.vertex_corners[i] % 3;
+      for (int j = 0; j < 3; ++j) terms.push_back({corner[f][k], topo.faces[f][j]});
+    }
+    std::sort(terms.begin(), terms.end(), [](const StarTerm& a, const StarTerm& b) { return a.vertex < b.vertex; });
+    for (const StarTerm& term : terms) {
+      if (static_cast<int>(star_.size()) > star_start_[v] && star_.back().vertex == term.vertex) star_.back().rest += term.rest;
+      else star_.push_back(term);
+    }
+    star_start_[v + 1] = static_cast<int>(star_.size());
+  }
+}
+
 int64_t CubicLocalStep::bytes_needed(int num_vertices, int num_faces) {
-  // Per face: slot_rest_ 72, the constructor's face normals 24. Per vertex: normal_ 24, area_ 8,
-  // weight_ 8, frame_ 4, carried_ 48, rho_ 8, iterations_ 4.
-  return 96 * int64_t{num_faces} + 104 * int64_t{num_vertices};
+  // Per face: slot_rest_ 72, the constructor's temporaries (face normals 24, corner vectors 72), the
+  // stars' terms 96 (32 bytes for each of about 3 per face: two per edge). Per vertex: normal_ 24,
+  // area_ 8, weight_ 8, frame_ 4, carried_ 48, rho_ 8, iterations_ 4, star_start_ 4, its own term 32.
+  return 264 * int64_t{num_faces} + 140 * int64_t{num_vertices};
 }
 
 void CubicLocalStep::set_vertex_styles(const std::vector<double>& strength, const std::vector<int>& frame,
@@ -120,8 +155,11 @@ void CubicLocalStep::fit(const MeshTopology& topo, const std::vector<Matrix3d>& 
     Matrix3d M = face_cov[topo.vertex_corners[begin] / 3];
     for (int i = begin + 1; i < end; ++i) M += face_cov[topo.vertex_corners[i] / 3];
     const double w = lambda * weight_[v];
+    // The rotation fit's start, carried from one ADMM iteration to the next (closest_rotation.h).
+    Matrix3d R = rotation_q[v].toRotationMatrix();
     if (!(w > 0)) {  // no cubic term: ARAP's rotation, exactly
-      rotation[v] = closest_rotation_warm(M, rotation_q[v]);
+      closest_rotation_warm(M, rotation_q[v], R);
+      rotation[v] = R;
       iterations_[v] = 0;
       return;
     }
@@ -130,34 +168,35 @@ void CubicLocalStep::fit(const MeshTopology& topo, const std::vector<Matrix3d>& 
     const Vector3d& n = normal_[v];
     double rho = rho_[v];
     Vector3d z = carried_[2 * v], u = carried_[2 * v + 1] / rho;
-    Matrix3d R;
     int it = 0;
     while (it < kMaxIterations) {
       ++it;
       // R: min ARAP + rho/2 ||R n - Q (z - u)||^2, i.e. the closest rotation to M + rho Q (z - u) n^T.
       const Vector3d target = turned ? Vector3d(Q * (z - u)) : Vector3d(z - u);
-      R = closest_rotation_warm(M + (rho * target) * n.transpose(), rotation_q[v]);
+      closest_rotation_warm(M + (rho * target) * n.transpose(), rotation_q[v], R);
       const Vector3d y = turned ? Vector3d(Q.transpose() * (R * n)) : Vector3d(R * n);
       const Vector3d z_old = z;
       z = soft_threshold(y + u, w / rho);
       u += y - z;
-      const double primal = (z - y).norm(), dual = rho * (z - z_old).norm();
+      // Residuals squared: the tests below compare them squared, saving this loop three of its five
+      // square roots.
+      const double primal2 = (z - y).squaredNorm(), dual2 = rho * rho * (z - z_old).squaredNorm();
       // The reference's stopping rule (rho u is the same before and after a rescaling below). Unlike
       // the reference, rho is not rebalanced on the iteration that stops: there both residuals are
       // rounding-level noise, and rescaling by their ratio, step after step, put vertices into limit
       // cycles (rho up, up, down, down) that kept reldV from falling below 1e-3.
-      const double eps_primal = sqrt6_abs + kRelTol * std::max(y.norm(), z.norm());
+      const double eps_primal = sqrt6_abs + kRelTol * std::sqrt(std::max(y.squaredNorm(), z.squaredNorm()));
       const double eps_dual = sqrt3_abs + kRelTol * rho * u.norm();
-      if (primal < eps_primal && dual < eps_dual) break;
+      if (primal2 < eps_primal * eps_primal && dual2 < eps_dual * eps_dual) break;
       // At an extrapolated state the first iteration's primal residual measures the extrapolation
       // (z was pushed ahead of R n): balancing rho on it raised rho fourfold on the 35K bunny, which
       // slowed the cubic term's pull until the run stopped short of the plain result (share 0.52
       // against 0.55).
       if (it == 1 && extrapolated) continue;
-      if (primal > kMu * dual && rho * kTau <= kMaxRho) {
+      if (primal2 > kMu * kMu * dual2 && rho * kTau <= kMaxRho) {
         rho *= kTau;
         u /= kTau;
-      } else if (dual > kMu * primal && rho / kTau >= kMinRho) {
+      } else if (dual2 > kMu * kMu * primal2 && rho / kTau >= kMinRho) {
         rho /= kTau;
         u *= kTau;
       }

@@ -79,16 +79,19 @@ inline Eigen::Matrix3d closest_rotation(const Eigen::Matrix3d& M) {
 // symmetric with tr(P) I - P positive definite, which characterizes the maximum. Between two steps
 // rotations move little, so two iterations usually suffice: several times cheaper than the Jacobi
 // solve above, which remains the fallback whenever Newton is not safely inside the basin.
-inline Eigen::Matrix3d closest_rotation_warm(const Eigen::Matrix3d& M, Eigen::Quaterniond& q) {
+//
+// R: on entry q's rotation matrix (q.toRotationMatrix(), which a caller fitting again from the last
+// result already holds), on return the result, q's rotation matrix again (or the fallback's).
+inline void closest_rotation_warm(const Eigen::Matrix3d& M, Eigen::Quaterniond& q, Eigen::Matrix3d& R) {
   using Eigen::Matrix3d;
   using Eigen::Vector3d;
   const double scale = M.cwiseAbs().maxCoeff();
   if (!(scale > 1e-300) || !std::isfinite(scale)) {
     q = Eigen::Quaterniond::Identity();
-    return Matrix3d::Identity();
+    R.setIdentity();
+    return;
   }
   for (int it = 0; it < 8; ++it) {
-    const Matrix3d R = q.toRotationMatrix();
     const Matrix3d A = R.transpose() * M;
     const Vector3d a(A(2, 1) - A(1, 2), A(0, 2) - A(2, 0), A(1, 0) - A(0, 1));
     const double tr = A.trace();
@@ -106,13 +109,19 @@ inline Eigen::Matrix3d closest_rotation_warm(const Eigen::Matrix3d& M, Eigen::Qu
                                 c02 * a.x() + c12 * a.y() + minor2 * a.z()) / det;
     if (!w.allFinite()) break;
     q = (q * Eigen::Quaterniond(1.0, 0.5 * w.x(), 0.5 * w.y(), 0.5 * w.z())).normalized();
+    R = q.toRotationMatrix();
     // Quadratic convergence: after a step of size |w| < 1e-4 the remaining error is ~1e-8 rad, far
     // below what the ARAP fit needs (reference implementations use single-precision SVDs), and a
     // vertex whose frame barely turned since the last step is done after one iteration.
-    if (w.squaredNorm() < 1e-8) return q.toRotationMatrix();
+    if (w.squaredNorm() < 1e-8) return;
   }
-  const Matrix3d R = closest_rotation(M);
+  R = closest_rotation(M);
   q = Eigen::Quaterniond(R);
+}
+
+inline Eigen::Matrix3d closest_rotation_warm(const Eigen::Matrix3d& M, Eigen::Quaterniond& q) {
+  Eigen::Matrix3d R = q.toRotationMatrix();
+  closest_rotation_warm(M, q, R);
   return R;
 }
 
