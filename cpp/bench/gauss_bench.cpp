@@ -1,13 +1,18 @@
 // gauss_bench MESH [--method gauss|cubic] [--style NAME] [--lambda L] [--sigma S] [--mu M] [--steps N]
-//             [--admm N] [--until TOL] [--acceleration on|off] [--threads N] [--out OUT.obj]
-//             (defaults: the solver's, printed by usage())
+//             [--admm N] [--until TOL] [--acceleration on|off] [--avoid-self-intersections]
+//             [--threads N] [--out OUT.obj]   (defaults: the solver's, printed by usage())
 // Times set-up and steps of the solver on one mesh and reports how far the style took hold.
 // --lambda is the lambda of the chosen method (settings::lambda or settings::cubic_lambda); the cubic
 // method uses the style's mu and rotation only, and its share is measured against the cube's normals.
 // --until TOL steps until a step's reldV is below TOL (--steps N is then the cap) and reports the
 // steps and milliseconds that took (steps_to_converge, ms_to_converge). --acceleration off runs the
-// plain iteration of Algorithm 1 (to compare with the accelerated default).
+// plain iteration of Algorithm 1 (to compare with the accelerated default). --avoid-self-intersections
+// turns the solver's guard on (self_intersection.h). Every run prints intersecting_pairs: BEFORE ->
+// AFTER, the pairs of faces that cross in the input and in the result (each pair once; Blender's
+// BVHTree.overlap lists each twice), and step_held_vertices_max, the most vertices the guard held back
+// in one step.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -17,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "gauss/collision/self_intersection.h"
 #include "gauss/mesh/alignment_share.h"
 #include "gauss/solver/gauss_solver.h"
 #include "gauss/mesh/mesh_io.h"
@@ -40,7 +46,7 @@ int usage() {
   std::fprintf(stderr,
                "usage: gauss_bench MESH [--method %s] [--style %s] [--lambda %g (cubic: %g)] [--sigma %g] [--mu %g]\n"
                "                   [--steps %d] [--admm %d] [--until TOL (e.g. %g; then --steps is the cap, default %d)]\n"
-               "                   [--acceleration %s] [--threads N] [--out OUT.obj]\n",
+               "                   [--acceleration %s] [--avoid-self-intersections] [--threads N] [--out OUT.obj]\n",
                settings::default_method, settings::default_preset, settings::lambda.default_value,
                settings::cubic_lambda.default_value, settings::sigma.default_value, settings::mu.default_value,
                kDefaultSteps, static_cast<int>(settings::admm_iterations.default_value),
@@ -61,8 +67,13 @@ int main(int argc, char** argv) {
   bool until_converged = false;  // --until given; otherwise exactly `steps` steps
   double until = 0;
   bool acceleration = settings::acceleration.default_value;
+  bool avoid_self_intersections = settings::avoid_self_intersections.default_value;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a == "--avoid-self-intersections") {  // a flag without a value
+      avoid_self_intersections = true;
+      continue;
+    }
     if (i + 1 >= argc) return usage();
     const char* v = argv[++i];
     if (a == "--method") method_name = v;
@@ -107,10 +118,11 @@ int main(int argc, char** argv) {
     if (cubic) solver.set_cubic_lambda(lambda);
     solver.set_method(method);
     solver.set_acceleration(acceleration);
+    solver.set_avoid_self_intersections(avoid_self_intersections);
     const double setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
     std::vector<double> step_ms, faces, rotations, admm_ms, rhs, solve, cubic_iterations;
-    int multi_threaded_steps = 0;
+    int multi_threaded_steps = 0, held_max = 0;
     double total_ms = 0;
     for (int s = 0; s < steps; ++s) {
       const auto t = std::chrono::steady_clock::now();
@@ -124,6 +136,7 @@ int main(int argc, char** argv) {
       rhs.push_back(pt.rhs);
       solve.push_back(pt.solve);
       multi_threaded_steps += pt.threads > 1;
+      held_max = std::max(held_max, solver.held_vertices());
       cubic_iterations.push_back(static_cast<double>(solver.cubic_admm_iterations()) / mesh.num_vertices());
       if (until_converged && solver.last_reldv() < until) break;
     }
@@ -160,6 +173,22 @@ int main(int argc, char** argv) {
       const double after = gauss::alignment_share(result.data(), mesh.F.data(), mesh.num_faces(), share_normals);
       std::printf("axis_share_10deg: %.4f -> %.4f\n", before, after);
     }
+    std::vector<std::array<int, 3>> triangles;  // the input's faces without a repeated corner
+    for (int f = 0; f < mesh.num_faces(); ++f) {
+      const int64_t* t = &mesh.F[3 * static_cast<size_t>(f)];
+      if (t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        triangles.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+    }
+    const auto points = [](const std::vector<double>& flat) {
+      std::vector<Eigen::Vector3d> p(flat.size() / 3);
+      for (size_t v = 0; v < p.size(); ++v) p[v] = Eigen::Vector3d(flat[3 * v], flat[3 * v + 1], flat[3 * v + 2]);
+      return p;
+    };
+    std::printf("avoid_self_intersections: %s\n", avoid_self_intersections ? "on" : "off");
+    std::printf("intersecting_pairs: %lld -> %lld\n",
+                static_cast<long long>(gauss::count_self_intersections(triangles, points(mesh.V))),
+                static_cast<long long>(gauss::count_self_intersections(triangles, points(result))));
+    std::printf("step_held_vertices_max: %d\n", held_max);
     if (cubic) std::printf("E_cubic: %.6g\n", solver.cubic_energy());
     else std::printf("E_g: %.6g\n", solver.g_energy());
     std::printf("E_ARAP: %.6g\n", solver.arap_energy());

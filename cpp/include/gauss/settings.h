@@ -79,7 +79,11 @@ inline constexpr Option keep_volume{"keep_volume", false};
 // Accelerate the iteration (fixed_point_iteration.h): the same result in about a third of the steps.
 inline constexpr Option acceleration{"acceleration", true};
 
-inline constexpr const Option* options[] = {&keep_volume, &acceleration};
+// Avoid Self-Intersections (self_intersection.h): no step brings two faces into contact that were not
+// at the start; vertices that would are held back. Off by default: the paper's method does not look.
+inline constexpr Option avoid_self_intersections{"avoid_self_intersections", false};
+
+inline constexpr const Option* options[] = {&keep_volume, &acceleration, &avoid_self_intersections};
 
 // The acceleration's parameters per method (fixed_point_iteration.h): the momentum factor beta, and for
 // how many steps a vertex whose step turned against its momentum goes without it, so that flapping

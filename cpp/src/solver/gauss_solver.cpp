@@ -314,9 +314,13 @@ void GaussSolver::step() {
   const parallel::ScopedThreads scoped(threads);
   const auto start = Clock::now();
   // The normalized frame's longest bounding-box side is 1.
+  // The guard compares the step's result with the iterate before it (not with an extrapolated
+  // point, which may itself be in contact).
+  if (guard_) safe_ = X_;
   const auto map = [this] {
     local_global_step();
     if (keep_volume_) volume_.restore(topo_, X_);
+    if (guard_) guard_->limit(safe_, X_);
   };
   if (method_ == Method::cubic) iteration_.advance(X_, cubic_.carried_state(), rest_, 1.0, map);
   else iteration_.advance(X_, rest_, 1.0, map);
@@ -347,6 +351,7 @@ void GaussSolver::reset() {
   std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
   if (cubic_ready_) cubic_.reset();
   laplacian_.place_pins(X_);
+  if (guard_) guard_->start_from(X_);
   step_count_ = 0;
   iteration_.invalidate();
 }

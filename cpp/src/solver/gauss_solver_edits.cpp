@@ -189,7 +189,7 @@ void GaussSolver::apply_pins(const std::vector<int64_t>& pinned, const double* p
   volume_ = VolumeKeeper(topo_, rest_, internal);
   pinned_input_ = pinned;
   pin_targets_ = std::move(targets);
-  laplacian_.place_pins(X_);
+  place_pins_guarded();
   iteration_.invalidate();
 }
 
@@ -202,7 +202,33 @@ void GaussSolver::set_pin_positions(const double* pin_positions, int count) {
   std::vector<Vector3d> targets = checked_pin_targets(pinned_input_, pin_positions);
   laplacian_.set_pin_positions(to_solver_frame(targets));
   pin_targets_ = std::move(targets);
+  place_pins_guarded();
+  iteration_.invalidate();
+}
+
+void GaussSolver::place_pins_guarded() {
+  if (!guard_) {
+    laplacian_.place_pins(X_);
+    return;
+  }
+  safe_ = X_;
   laplacian_.place_pins(X_);
+  guard_->limit(safe_, X_);
+}
+
+void GaussSolver::set_avoid_self_intersections(bool on) {
+  if (on == avoid_self_intersections()) return;
+  if (on) {
+    const int64_t nV = topo_.num_vertices, nF = static_cast<int64_t>(topo_.faces.size());
+    check_memory(SelfIntersectionGuard::bytes_needed(nV, nF) + 24 * nV,
+                 "the self-intersection guard for " + std::to_string(nV) + " vertices");
+    guard_ = std::make_unique<SelfIntersectionGuard>(topo_, rest_);
+    safe_.resize(topo_.num_vertices);
+    guard_->start_from(X_);
+  } else {
+    guard_.reset();
+    std::vector<Vector3d>().swap(safe_);
+  }
   iteration_.invalidate();
 }
 
@@ -233,6 +259,7 @@ void GaussSolver::set_vertices(const double* V, int count) {
     if (topo_.component[v] >= 0) X_[v] = (Vector3d(V[3 * old], V[3 * old + 1], V[3 * old + 2]) - center_) / scale_;
   }
   laplacian_.place_pins(X_);
+  if (guard_) guard_->start_from(X_);  // the caller's vertices are the new start, contacts and all
   std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
   if (cubic_ready_) cubic_.reset();  // the cubic method's ADMM warm start, as reset() clears it
   iteration_.invalidate();

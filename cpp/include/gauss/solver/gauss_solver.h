@@ -21,8 +21,10 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "gauss/collision/self_intersection.h"
 #include "gauss/solver/constrained_laplacian.h"
 #include "gauss/solver/cubic_local_step.h"
 #include "gauss/solver/fixed_point_iteration.h"
@@ -96,6 +98,14 @@ class GaussSolver {
   void set_acceleration(bool on);
   bool acceleration() const { return iteration_.acceleration(); }
   const settings::Momentum& momentum() const { return iteration_.momentum(); }  // the method's
+  // Avoid Self-Intersections (settings::avoid_self_intersections, self_intersection.h): no step and no
+  // move of the pins brings two faces into contact that were not in contact at the start (when it is
+  // switched on, and after reset() or set_vertices()); vertices that would are held back short of it.
+  // Switching it on allocates the guard (std::bad_alloc or OutOfMemory like the set-up).
+  void set_avoid_self_intersections(bool on);
+  bool avoid_self_intersections() const { return guard_ != nullptr; }
+  // Vertices the guard held back in the last step or pin move (0 when it is off).
+  int held_vertices() const { return guard_ ? guard_->last_held() : 0; }
 
   // --- Method: the next step's local step; pins, styles and the factorization stay. ---
   // The first switch to Method::cubic prepares its per-vertex data (O(#V), no factorization). With it,
@@ -154,6 +164,8 @@ class GaussSolver {
  private:
   void compute_rest_quantities();
   // set_pins' work inside a set-up that `progress` already reports (the constructor's or set_pins').
+  // Moves the pinned vertices to their targets; with the guard on, short of new contacts.
+  void place_pins_guarded();
   void apply_pins(const std::vector<int64_t>& pinned, const double* pin_positions, Progress& progress);
   // One local-global step on X_ (Algorithm 1: local step, then the global solve), timing its phases.
   void local_global_step();
@@ -206,6 +218,8 @@ class GaussSolver {
   int factorization_count_ = 0;
   VolumeKeeper volume_;                              // rest sizes of the components without a pin
   bool keep_volume_ = settings::keep_volume.default_value;
+  std::unique_ptr<SelfIntersectionGuard> guard_;     // while avoid_self_intersections is on
+  std::vector<Eigen::Vector3d> safe_;                // #V while it is on: X before the step
 
   // Per-step buffers (allocated once).
   std::vector<Eigen::Vector3d> normal_star_;                 // #F

@@ -1,0 +1,97 @@
+#pragma once
+// Self-intersections of a triangle mesh: counting them, and a guard that keeps a run from making new
+// ones (the paper's own limitation, section 5.2: its energy only looks at the surface).
+//
+// Counting: count_self_intersections() counts the unordered pairs of faces that cross
+// (triangle_intersection.h: what Blender's 3D-Print toolbox counts with BVHTree.overlap, whose list
+// holds every such pair twice, once in each order).
+//
+// The guard (the solver's avoid_self_intersections setting). Why this technique: the global step's
+// matrix stays the one factored at set-up (a barrier or contact forces would change it every step),
+// and the guard only looks at the result of a step. A step of Algorithm 1 maps the vertices from a
+// state S, free of new crossings, to a candidate C. The guard refits a bounding-volume hierarchy
+// (face_bvh.h) to C and tests the faces whose boxes overlap. Where two faces cross, or come closer
+// than kContactMargin without sharing a corner, and did not already at the start, their corners are
+// moved back towards S (x = S + t (C - S), t halved per round, then 0), and the faces around them are
+// tested again, until no new pair is left. In the worst case every vertex is back at S, which has none:
+// a step can stop short, never pass through. This is the intersection-free line search of Incremental
+// Potential Contact (Li et al. 2020) made local to the faces involved, on the discrete states a run
+// shows (the states between two steps are not checked: the margin keeps faces apart by more than
+// rounding, and a step moves a vertex far less than the mesh is thick where the style pushes).
+// Pinned vertices are held back like the others: a handle dragged into the mesh leaves its pins short
+// of their targets while going further would pass through.
+//
+// Cost: most pairs whose boxes overlap are neighbours sharing a corner. Two faces around a corner can
+// only cross where the corner's star folds over: projected onto the plane normal to the star's
+// (area-weighted) normal, a star whose faces all keep their orientation and wind around the corner
+// once (an open star: less than once) covers no point twice, so none of its faces cross. Only the
+// pairs around the other corners are tested.
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "gauss/collision/face_bvh.h"
+#include "gauss/mesh/mesh_topology.h"
+
+namespace gauss {
+
+// Faces closer than this (without a shared corner) count as touching, in the solver's normalized
+// frame, whose longest bounding-box side is 1: 1e-4 is 0.01% of the mesh's size, a thousand times
+// float32's rounding there, and well below the edge lengths of meshes up to millions of faces.
+inline constexpr double kContactMargin = 1e-4;
+
+// Unordered pairs of faces that cross. faces: #F by 3; X: #V by 3 (any frame).
+int64_t count_self_intersections(const std::vector<std::array<int, 3>>& faces, const std::vector<Eigen::Vector3d>& X);
+
+class SelfIntersectionGuard {
+ public:
+  SelfIntersectionGuard() = default;
+  // topo: the mesh (kept by reference: the solver's topology outlives the guard); X0: #V by 3, the
+  // positions the hierarchy is built on (the rest mesh).
+  SelfIntersectionGuard(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& X0);
+
+  // Takes the pairs in contact at X (#V by 3, normalized frame) as the start: they may stay (a mesh
+  // that already intersects keeps those pairs), every other pair must never come into contact.
+  void start_from(const std::vector<Eigen::Vector3d>& X);
+
+  // safe: the state before the step (no new contacts); X: the step's result, changed in place to the
+  // nearest state on the way back to `safe` without new contacts, per vertex. Returns the number of
+  // vertices held back (0: X was left as it was).
+  int limit(const std::vector<Eigen::Vector3d>& safe, std::vector<Eigen::Vector3d>& X);
+
+  // Pairs in contact at the start (start_from), and held back by the last limit().
+  int64_t allowed_pairs() const { return static_cast<int64_t>(allowed_.size()); }
+  int last_held() const { return last_held_; }
+
+  // Bytes a guard for this mesh holds (its hierarchy and per-vertex buffers; the allowed pairs come
+  // on top, as many as the mesh has in contact).
+  static int64_t bytes_needed(int64_t num_vertices, int64_t num_faces);
+
+ private:
+  // Pairs (f < g, as f * 2^32 + g) in contact at X, without the allowed ones if skip_allowed; sorted.
+  std::vector<uint64_t> contacts(const std::vector<Eigen::Vector3d>& X, bool skip_allowed);
+
+  // Marks flat_star_[v] for every vertex whose star covers no point twice (see above) at X: all, or
+  // those of the given faces' corners.
+  void find_flat_stars(const std::vector<Eigen::Vector3d>& X, const std::vector<int>* faces);
+  // Whether faces f and g are in contact at X (flat_star_ up to date for their corners).
+  bool in_contact(int f, int g, const std::vector<Eigen::Vector3d>& X) const;
+  // The contacts, not allowed, of the given faces with any other (sorted, each once).
+  std::vector<uint64_t> contacts_of(const std::vector<int>& faces, const std::vector<Eigen::Vector3d>& X);
+
+  const MeshTopology* topo_ = nullptr;
+  FaceBvh bvh_;
+  std::vector<uint8_t> closed_star_;      // #V: every edge at the vertex has two faces
+  std::vector<uint8_t> flat_star_;        // #V, per check
+  std::vector<uint64_t> allowed_;         // sorted
+  std::vector<Eigen::Vector3d> candidate_;  // #V: the step's result before limit()
+  std::vector<float> step_fraction_;      // #V: t of every vertex in the current limit(), 1 outside it
+  std::vector<uint32_t> round_stamp_;     // #V: the last round that stepped the vertex back
+  uint32_t stamp_count_ = 0;
+  std::vector<int> held_;                 // vertices with t < 1
+  std::vector<int> touched_;              // faces moved in the current round
+  int last_held_ = 0;
+};
+
+}  // namespace gauss

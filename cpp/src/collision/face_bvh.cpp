@@ -1,0 +1,177 @@
+#include "gauss/collision/face_bvh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "gauss/util/parallel.h"
+
+namespace gauss {
+
+using Eigen::Vector3d;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}  // namespace
+
+FaceBvh::FaceBvh(const std::vector<std::array<int, 3>>& faces, const std::vector<Vector3d>& X0)
+    : faces_(&faces), order_(faces.size()), face_box_(faces.size()), face_area_(faces.size()) {
+  const int n = static_cast<int>(faces.size());
+  std::vector<Vector3d> centroid(n);
+  for (int f = 0; f < n; ++f) {
+    centroid[f] = (X0[faces[f][0]] + X0[faces[f][1]] + X0[faces[f][2]]) / 3.0;
+    order_[f] = f;
+  }
+  nodes_.reserve(2 * (n / kLeafSize + 1));
+  if (n > 0) build(0, n, -1, centroid);
+  position_.resize(n);
+  leaf_of_.resize(n);
+  for (int i = 0; i < n; ++i) position_[order_[i]] = i;
+  for (int node = 0; node < static_cast<int>(nodes_.size()); ++node)
+    if (nodes_[node].left < 0)
+      for (int i = nodes_[node].begin; i < nodes_[node].end; ++i) leaf_of_[i] = node;
+  find_connected_nodes();
+}
+
+void FaceBvh::find_connected_nodes() {
+  // A leaf: its few faces linked through shared corners. A node: both children connected and
+  // sharing a corner (marked by the node's index over the left child's corners).
+  const std::vector<std::array<int, 3>>& faces = *faces_;
+  int num_vertices = 0;
+  for (const auto& f : faces) num_vertices = std::max({num_vertices, f[0] + 1, f[1] + 1, f[2] + 1});
+  std::vector<int> mark(num_vertices, -1);
+  for (int n = static_cast<int>(nodes_.size()) - 1; n >= 0; --n) {  // children first
+    Node& node = nodes_[n];
+    if (node.left >= 0) {
+      const Node &l = nodes_[node.left], &r = nodes_[node.right];
+      node.connected = false;
+      if (!l.connected || !r.connected) continue;
+      for (int i = l.begin; i < l.end; ++i)
+        for (int v : faces[order_[i]]) mark[v] = n;
+      for (int i = r.begin; i < r.end && !node.connected; ++i)
+        for (int v : faces[order_[i]]) node.connected = node.connected || mark[v] == n;
+      continue;
+    }
+    // Grow a patch from the leaf's first face until nothing is added.
+    int joined = 1;
+    std::vector<bool> in(node.end - node.begin, false);
+    in[0] = true;
+    for (bool grew = true; grew;) {
+      grew = false;
+      for (int i = 0; i < node.end - node.begin; ++i) {
+        if (in[i]) continue;
+        for (int j = 0; j < node.end - node.begin && !in[i]; ++j) {
+          if (!in[j]) continue;
+          for (int a : faces[order_[node.begin + i]])
+            for (int b : faces[order_[node.begin + j]]) in[i] = in[i] || a == b;
+        }
+        if (in[i]) grew = true, ++joined;
+      }
+    }
+    node.connected = joined == node.end - node.begin;
+  }
+}
+
+std::vector<std::array<int, 2>> FaceBvh::tasks(int count) const {
+  // within(root) expanded breadth first: within(n) = within(left) + within(right) + between(left,
+  // right); a between task stays whole.
+  std::vector<std::array<int, 2>> work{{0, 0}};
+  size_t i = 0;
+  while (i < work.size() && static_cast<int>(work.size()) < count) {
+    const int n = work[i][0];
+    if (work[i][1] != n || nodes_[n].left < 0) {
+      ++i;
+      continue;
+    }
+    work[i] = {nodes_[n].left, nodes_[n].left};  // expanded further on the next pass of the loop
+    work.push_back({nodes_[n].right, nodes_[n].right});
+    work.push_back({nodes_[n].left, nodes_[n].right});
+  }
+  return work;
+}
+
+int FaceBvh::build(int begin, int end, int parent, const std::vector<Vector3d>& centroid) {
+  const int index = static_cast<int>(nodes_.size());
+  nodes_.push_back(Node{Box{}, begin, end, -1, -1, parent, false, false, Vector3d::Zero(), kPi});
+  if (end - begin > kLeafSize) {
+    Vector3d lo = centroid[order_[begin]], hi = lo;
+    for (int i = begin + 1; i < end; ++i) {
+      lo = lo.cwiseMin(centroid[order_[i]]);
+      hi = hi.cwiseMax(centroid[order_[i]]);
+    }
+    int axis;
+    (hi - lo).maxCoeff(&axis);
+    const int mid = begin + (end - begin) / 2;
+    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                     [&](int f, int g) { return centroid[f][axis] < centroid[g][axis]; });
+    const int left = build(begin, mid, index, centroid);
+    const int right = build(mid, end, index, centroid);
+    nodes_[index].left = left;
+    nodes_[index].right = right;
+  }
+  return index;
+}
+
+int64_t FaceBvh::bytes_needed(int64_t num_faces) {
+  // A face's box (24 bytes), its place in the order and back and its leaf (12) and its centroid while
+  // building (24), and per leaf (2 nodes of 44 bytes) a share of the tree.
+  return 60 * num_faces + 2 * 44 * (num_faces / kLeafSize + 1);
+}
+
+void FaceBvh::fit_face(int i, const std::vector<Vector3d>& X, double margin) {
+  const std::array<int, 3>& face = (*faces_)[order_[i]];
+  const Vector3d& a = X[face[0]];
+  const Vector3d& b = X[face[1]];
+  const Vector3d& c = X[face[2]];
+  const Vector3d lo = a.cwiseMin(b).cwiseMin(c).array() - margin, hi = a.cwiseMax(b).cwiseMax(c).array() + margin;
+  for (int k = 0; k < 3; ++k) {
+    face_box_[i].lo[k] = std::nextafter(static_cast<float>(lo[k]), -std::numeric_limits<float>::infinity());
+    face_box_[i].hi[k] = std::nextafter(static_cast<float>(hi[k]), std::numeric_limits<float>::infinity());
+  }
+  face_area_[i] = (b - a).cross(c - a);
+}
+
+namespace {
+// The angle between two vectors (pi if either is zero).
+double angle_between(const Vector3d& a, const Vector3d& b) {
+  const double la = a.norm(), lb = b.norm();
+  if (!(la > 0 && lb > 0)) return kPi;
+  return std::acos(std::clamp(a.dot(b) / (la * lb), -1.0, 1.0));
+}
+}  // namespace
+
+void FaceBvh::fit_node(int n) {
+  Node& node = nodes_[n];
+  if (node.left >= 0) {
+    const Node &l = nodes_[node.left], &r = nodes_[node.right];
+    node.box = l.box;
+    node.box.merge(r.box);
+    node.area = l.area + r.area;
+    node.angle = std::min(kPi, std::max(angle_between(node.area, l.area) + l.angle,
+                                        angle_between(node.area, r.area) + r.angle));
+  } else {
+    node.box = face_box_[node.begin];
+    node.area = face_area_[node.begin];
+    for (int i = node.begin + 1; i < node.end; ++i) {
+      node.box.merge(face_box_[i]);
+      node.area += face_area_[i];
+    }
+    node.angle = 0;
+    for (int i = node.begin; i < node.end; ++i) node.angle = std::max(node.angle, angle_between(node.area, face_area_[i]));
+  }
+  node.flat = node.connected && node.angle < kFlatAngle;
+}
+
+void FaceBvh::refit(const std::vector<Vector3d>& X, double margin) {
+  parallel::for_each(static_cast<int>(face_box_.size()), parallel::kMinParallelItems,
+                     [&](int i) { fit_face(i, X, margin); });
+  for (int n = static_cast<int>(nodes_.size()) - 1; n >= 0; --n) fit_node(n);  // children first
+}
+
+void FaceBvh::refit_faces(const std::vector<int>& faces, const std::vector<Vector3d>& X, double margin) {
+  for (int f : faces) fit_face(position_[f], X, margin);
+  for (int f : faces)  // up to the root; a node refitted twice costs little, a short list is the case
+    for (int n = leaf_of_[position_[f]]; n >= 0; n = nodes_[n].parent) fit_node(n);
+}
+
+}  // namespace gauss

@@ -1,0 +1,220 @@
+#include "gauss/collision/self_intersection.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <numeric>
+
+#include "gauss/collision/triangle_intersection.h"
+#include "gauss/util/parallel.h"
+
+namespace gauss {
+
+using Eigen::Vector3d;
+
+namespace {
+
+// The pair's key, the same in either order: min * 2^32 + max.
+uint64_t pair_key(int f, int g) {
+  if (f > g) std::swap(f, g);
+  return (static_cast<uint64_t>(f) << 32) | static_cast<uint32_t>(g);
+}
+
+// The two faces' corners with their shared corners first, in the same order in both; returns how many
+// they share.
+int arrange(const std::array<int, 3>& fa, const std::array<int, 3>& fb, const std::vector<Vector3d>& X,
+            Triangle& a, Triangle& b) {
+  int order_a[3], order_b[3], shared = 0;
+  bool used_a[3] = {false, false, false}, used_b[3] = {false, false, false};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (!used_b[j] && fa[i] == fb[j]) {
+        order_a[shared] = i;
+        order_b[shared] = j;
+        used_a[i] = used_b[j] = true;
+        ++shared;
+        break;
+      }
+  int ka = shared, kb = shared;
+  for (int i = 0; i < 3; ++i) {
+    if (!used_a[i]) order_a[ka++] = i;
+    if (!used_b[i]) order_b[kb++] = i;
+  }
+  for (int i = 0; i < 3; ++i) {
+    a.col(i) = X[fa[order_a[i]]];
+    b.col(i) = X[fb[order_b[i]]];
+  }
+  return shared;
+}
+
+// Collects pair keys from several threads: the pairs found are few, so one lock suffices.
+struct PairSink {
+  std::mutex mutex;
+  std::vector<uint64_t> keys;
+  void add(uint64_t key) {
+    std::lock_guard<std::mutex> lock(mutex);
+    keys.push_back(key);
+  }
+};
+
+}  // namespace
+
+int64_t count_self_intersections(const std::vector<std::array<int, 3>>& faces, const std::vector<Vector3d>& X) {
+  FaceBvh bvh(faces, X);
+  bvh.refit(X, 0.0);
+  PairSink sink;
+  bvh.for_overlapping_pairs([&](int f, int g) {  // every pair: the count is exact, not a guard's
+    Triangle a, b;
+    const int shared = arrange(faces[f], faces[g], X, a, b);
+    if (triangles_cross(a, b, shared)) sink.add(pair_key(f, g));
+  }, false);
+  return static_cast<int64_t>(sink.keys.size());
+}
+
+SelfIntersectionGuard::SelfIntersectionGuard(const MeshTopology& topo, const std::vector<Vector3d>& X0)
+    : topo_(&topo),
+      bvh_(topo.faces, X0),
+      closed_star_(X0.size(), 1),
+      flat_star_(X0.size(), 0),
+      candidate_(X0.size()),
+      step_fraction_(X0.size(), 1.0f),
+      round_stamp_(X0.size(), 0) {
+  for (size_t e = 0; e < topo.edges.size(); ++e)
+    if (topo.edge_slot_start[e + 1] - topo.edge_slot_start[e] != 2) closed_star_[topo.edges[e][0]] = closed_star_[topo.edges[e][1]] = 0;
+}
+
+void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, const std::vector<int>* faces) {
+  const MeshTopology& topo = *topo_;
+  constexpr double kTwoPi = 6.283185307179586;
+  const auto star = [&](int v) {
+    const int begin = topo.vertex_corner_start[v], end = topo.vertex_corner_start[v + 1];
+    Vector3d n = Vector3d::Zero();
+    for (int i = begin; i < end; ++i) {
+      const std::array<int, 3>& f = topo.faces[topo.vertex_corners[i] / 3];
+      n += (X[f[1]] - X[f[0]]).cross(X[f[2]] - X[f[0]]);
+    }
+    bool flat = n.squaredNorm() > 0;
+    // Seen along n, every face must turn the right way (a wedge of less than half a turn), and the
+    // wedges must wind around the corner once: a closed star covers the ray along its first edge
+    // once (its first wedge; a fold covers it again), an open one sums to less than a full turn.
+    Vector3d ray = Vector3d::Zero();
+    double winding = 0;
+    int covering = 0;
+    for (int i = begin; i < end && flat; ++i) {
+      const int corner = topo.vertex_corners[i];
+      const std::array<int, 3>& f = topo.faces[corner / 3];
+      const int k = corner % 3;
+      const Vector3d a = X[f[(k + 1) % 3]] - X[v], b = X[f[(k + 2) % 3]] - X[v];
+      const double turn = a.cross(b).dot(n);
+      flat = turn > 0;
+      if (!closed_star_[v]) {
+        const Vector3d pa = a - a.dot(n) / n.squaredNorm() * n, pb = b - b.dot(n) / n.squaredNorm() * n;
+        winding += std::atan2(turn / n.norm(), pa.dot(pb));
+        continue;
+      }
+      if (i == begin) ray = a;
+      covering += a.cross(ray).dot(n) >= 0 && ray.cross(b).dot(n) > 0;
+    }
+    flat_star_[v] = flat && (closed_star_[v] ? covering == 1 : winding < kTwoPi);
+  };
+  if (faces == nullptr) {
+    parallel::for_each(topo.num_vertices, parallel::kMinParallelItems, star);
+    return;
+  }
+  for (int f : *faces)  // the stars these faces belong to (a star twice is harmless)
+    for (int v : topo.faces[f]) star(v);
+}
+
+int64_t SelfIntersectionGuard::bytes_needed(int64_t num_vertices, int64_t num_faces) {
+  return FaceBvh::bytes_needed(num_faces) + (24 + 4 + 4 + 4 + 2) * num_vertices;
+}
+
+bool SelfIntersectionGuard::in_contact(int f, int g, const std::vector<Vector3d>& X) const {
+  const std::array<int, 3>&fa = topo_->faces[f], &fb = topo_->faces[g];
+  int shared = 0, corner = -1;
+  for (int i : fa)
+    if (i == fb[0] || i == fb[1] || i == fb[2]) ++shared, corner = i;
+  if (shared >= 2 || (shared == 1 && flat_star_[corner])) return false;
+  Triangle a, b;
+  arrange(fa, fb, X, a, b);
+  return triangles_closer_than(a, b, shared, kContactMargin);
+}
+
+std::vector<uint64_t> SelfIntersectionGuard::contacts(const std::vector<Vector3d>& X, bool skip_allowed) {
+  bvh_.refit(X, 0.5 * kContactMargin);
+  find_flat_stars(X, nullptr);
+  PairSink sink;
+  bvh_.for_overlapping_pairs([&](int f, int g) {
+    if (!in_contact(f, g, X)) return;
+    const uint64_t key = pair_key(f, g);
+    if (skip_allowed && std::binary_search(allowed_.begin(), allowed_.end(), key)) return;
+    sink.add(key);
+  }, true);
+  std::sort(sink.keys.begin(), sink.keys.end());
+  return std::move(sink.keys);
+}
+
+std::vector<uint64_t> SelfIntersectionGuard::contacts_of(const std::vector<int>& faces,
+                                                         const std::vector<Vector3d>& X) {
+  bvh_.refit_faces(faces, X, 0.5 * kContactMargin);
+  find_flat_stars(X, &faces);
+  std::vector<uint64_t> keys;
+  bvh_.for_pairs_with(faces, [&](int f, int g) {
+    if (!in_contact(f, g, X)) return;
+    const uint64_t key = pair_key(f, g);
+    if (!std::binary_search(allowed_.begin(), allowed_.end(), key)) keys.push_back(key);
+  });
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  return keys;
+}
+
+void SelfIntersectionGuard::start_from(const std::vector<Vector3d>& X) {
+  allowed_.clear();
+  allowed_ = contacts(X, false);
+}
+
+int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<Vector3d>& X) {
+  const MeshTopology& topo = *topo_;
+  // A held vertex's step is halved per round down to kSmallestFraction, then taken back to `safe`
+  // outright; after kMaxRounds rounds every vertex goes back (never needed in the cases measured, but
+  // it bounds the work).
+  constexpr float kSmallestFraction = 1.0f / 8;
+  constexpr int kMaxRounds = 32;
+  held_.clear();
+  std::vector<uint64_t> found = contacts(X, true);
+  for (int round = 0; !found.empty(); ++round) {
+    if (round == 0) candidate_ = X;
+    if (round >= kMaxRounds) {  // every vertex back
+      for (int v : held_) step_fraction_[v] = 1.0f;
+      held_.resize(X.size());
+      std::iota(held_.begin(), held_.end(), 0);
+      X = safe;
+      break;
+    }
+    const uint32_t stamp = ++stamp_count_;  // each vertex steps back once per round
+    touched_.clear();
+    for (uint64_t key : found) {
+      for (int face : {static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu)}) {
+        for (int v : topo.faces[face]) {
+          if (round_stamp_[v] == stamp) continue;
+          round_stamp_[v] = stamp;
+          float& t = step_fraction_[v];
+          if (t == 1.0f) held_.push_back(v);
+          t = t > kSmallestFraction ? 0.5f * t : 0.0f;
+          X[v] = safe[v] + static_cast<double>(t) * (candidate_[v] - safe[v]);
+          for (int i = topo.vertex_corner_start[v]; i < topo.vertex_corner_start[v + 1]; ++i)
+            touched_.push_back(topo.vertex_corners[i] / 3);
+        }
+      }
+    }
+    std::sort(touched_.begin(), touched_.end());
+    touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
+    found = contacts_of(touched_, X);  // only faces that moved can have come into contact
+  }
+  last_held_ = static_cast<int>(held_.size());
+  for (int v : held_) step_fraction_[v] = 1.0f;
+  return last_held_;
+}
+
+}  // namespace gauss
