@@ -1,7 +1,6 @@
 // The cubic method's global-step right-hand side folded per vertex (CubicLocalStep::global_rhs) against
 // its per-face definition, sum over the faces f of v of R_f (w d^_prev - w d^_next) with R_f the mean of
-// f's three vertex rotations and w the face's cotangent weights (cubic_local_step.h); and the rotation
-// fit that takes its start as a matrix (closest_rotation.h) against the one that builds it.
+// f's three vertex rotations and w the face's cotangent weights (cubic_local_step.h).
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -9,7 +8,6 @@
 #include <vector>
 
 #include "gauss/mesh/mesh_topology.h"
-#include "gauss/solver/closest_rotation.h"
 #include "gauss/solver/cotangent_weights.h"
 #include "gauss/solver/cubic_local_step.h"
 #include "test_meshes.h"
@@ -73,23 +71,6 @@ TEST(CubicGlobalRhs, UnreferencedVertexGetsZero) {
   const gauss::CubicLocalStep cubic(topo, rest, std::vector<double>(topo.edges.size(), 1.0));
   const std::vector<Matrix3d> rotation(nV, Matrix3d::Identity());
   EXPECT_EQ(cubic.global_rhs(nV - 1, rotation), Vector3d::Zero());
-}
-
-TEST(ClosestRotationWarm, StartGivenAsAMatrixGivesTheSameBits) {
-  std::mt19937 rng(7);
-  std::normal_distribution<double> normal;
-  for (int trial = 0; trial < 200; ++trial) {
-    Matrix3d M;
-    for (int i = 0; i < 9; ++i) M(i / 3, i % 3) = normal(rng);
-    if (trial % 4 == 0) M.col(2).setZero();  // rank two
-    const Quaterniond start = random_rotation(rng);
-    Quaterniond q1 = start, q2 = start;
-    const Matrix3d R1 = gauss::closest_rotation_warm(M, q1);
-    Matrix3d R2 = start.toRotationMatrix();
-    gauss::closest_rotation_warm(M, q2, R2);
-    EXPECT_EQ(R1, R2);
-    EXPECT_EQ(q1.coeffs(), q2.coeffs());
-  }
 }
 
 }  // namespace

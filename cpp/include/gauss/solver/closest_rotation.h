@@ -82,41 +82,80 @@ inline Eigen::Matrix3d closest_rotation(const Eigen::Matrix3d& M) {
 //
 // R: on entry q's rotation matrix (q.toRotationMatrix(), which a caller fitting again from the last
 // result already holds), on return the result, q's rotation matrix again (or the fallback's).
-inline void closest_rotation_warm(const Eigen::Matrix3d& M, Eigen::Quaterniond& q, Eigen::Matrix3d& R) {
+//
+// closest_rotation_warm_lanes<L> runs L independent fits in lockstep (lane l only if active[l]; an
+// inactive lane's M, q, R are not read or written), each with exactly the operations of one fit, so
+// the results are the same bits. Why: one fit is a chain of dependent operations (a product, a 3x3
+// solve, a division, a square root, per iteration) whose latency the processor cannot hide on its
+// own; two chains side by side overlap, and two fits take 0.78 of the time of two one after another.
+template <int L>
+inline void closest_rotation_warm_lanes(const Eigen::Matrix3d* M, Eigen::Quaterniond* q, Eigen::Matrix3d* R,
+                                        const bool* active) {
   using Eigen::Matrix3d;
   using Eigen::Vector3d;
-  const double scale = M.cwiseAbs().maxCoeff();
-  if (!(scale > 1e-300) || !std::isfinite(scale)) {
-    q = Eigen::Quaterniond::Identity();
-    R.setIdentity();
-    return;
+  bool running[L], fallback[L];
+  double scale[L];
+  bool any = false;
+  for (int l = 0; l < L; ++l) {
+    running[l] = active[l];
+    fallback[l] = false;
+    if (!running[l]) continue;
+    scale[l] = M[l].cwiseAbs().maxCoeff();
+    if (!(scale[l] > 1e-300) || !std::isfinite(scale[l])) {
+      q[l] = Eigen::Quaterniond::Identity();
+      R[l].setIdentity();
+      running[l] = false;
+    }
+    any = any || running[l];
   }
-  for (int it = 0; it < 8; ++it) {
-    const Matrix3d A = R.transpose() * M;
-    const Vector3d a(A(2, 1) - A(1, 2), A(0, 2) - A(2, 0), A(1, 0) - A(0, 1));
-    const double tr = A.trace();
-    // H = tr(P) I - P, symmetric.
-    const double h00 = tr - A(0, 0), h11 = tr - A(1, 1), h22 = tr - A(2, 2);
-    const double h01 = -0.5 * (A(0, 1) + A(1, 0)), h02 = -0.5 * (A(0, 2) + A(2, 0)),
-                 h12 = -0.5 * (A(1, 2) + A(2, 1));
-    const double c00 = h11 * h22 - h12 * h12, c01 = h02 * h12 - h01 * h22, c02 = h01 * h12 - h02 * h11;
-    const double det = h00 * c00 + h01 * c01 + h02 * c02;
-    const double minor2 = h00 * h11 - h01 * h01;
-    if (!(h00 > 0 && minor2 > 0 && det > 1e-12 * scale * scale * scale)) break;  // not in the basin
-    const double c11 = h00 * h22 - h02 * h02, c12 = h01 * h02 - h00 * h12;
-    const Vector3d w = Vector3d(c00 * a.x() + c01 * a.y() + c02 * a.z(),
-                                c01 * a.x() + c11 * a.y() + c12 * a.z(),
-                                c02 * a.x() + c12 * a.y() + minor2 * a.z()) / det;
-    if (!w.allFinite()) break;
-    q = (q * Eigen::Quaterniond(1.0, 0.5 * w.x(), 0.5 * w.y(), 0.5 * w.z())).normalized();
-    R = q.toRotationMatrix();
-    // Quadratic convergence: after a step of size |w| < 1e-4 the remaining error is ~1e-8 rad, far
-    // below what the ARAP fit needs (reference implementations use single-precision SVDs), and a
-    // vertex whose frame barely turned since the last step is done after one iteration.
-    if (w.squaredNorm() < 1e-8) return;
+  for (int it = 0; it < 8 && any; ++it) {
+    any = false;
+    for (int l = 0; l < L; ++l) {
+      if (!running[l]) continue;
+      const Matrix3d A = R[l].transpose() * M[l];
+      const Vector3d a(A(2, 1) - A(1, 2), A(0, 2) - A(2, 0), A(1, 0) - A(0, 1));
+      const double tr = A.trace();
+      // H = tr(P) I - P, symmetric.
+      const double h00 = tr - A(0, 0), h11 = tr - A(1, 1), h22 = tr - A(2, 2);
+      const double h01 = -0.5 * (A(0, 1) + A(1, 0)), h02 = -0.5 * (A(0, 2) + A(2, 0)),
+                   h12 = -0.5 * (A(1, 2) + A(2, 1));
+      const double c00 = h11 * h22 - h12 * h12, c01 = h02 * h12 - h01 * h22, c02 = h01 * h12 - h02 * h11;
+      const double det = h00 * c00 + h01 * c01 + h02 * c02;
+      const double minor2 = h00 * h11 - h01 * h01;
+      const double sc = scale[l];
+      if (!(h00 > 0 && minor2 > 0 && det > 1e-12 * sc * sc * sc)) {  // not in the basin
+        running[l] = false;
+        fallback[l] = true;
+        continue;
+      }
+      const double c11 = h00 * h22 - h02 * h02, c12 = h01 * h02 - h00 * h12;
+      const Vector3d w = Vector3d(c00 * a.x() + c01 * a.y() + c02 * a.z(),
+                                  c01 * a.x() + c11 * a.y() + c12 * a.z(),
+                                  c02 * a.x() + c12 * a.y() + minor2 * a.z()) / det;
+      if (!w.allFinite()) {
+        running[l] = false;
+        fallback[l] = true;
+        continue;
+      }
+      q[l] = (q[l] * Eigen::Quaterniond(1.0, 0.5 * w.x(), 0.5 * w.y(), 0.5 * w.z())).normalized();
+      R[l] = q[l].toRotationMatrix();
+      // Quadratic convergence: after a step of size |w| < 1e-4 the remaining error is ~1e-8 rad, far
+      // below what the ARAP fit needs (reference implementations use single-precision SVDs), and a
+      // vertex whose frame barely turned since the last step is done after one iteration.
+      if (w.squaredNorm() < 1e-8) running[l] = false;
+      any = any || running[l];
+    }
   }
-  R = closest_rotation(M);
-  q = Eigen::Quaterniond(R);
+  for (int l = 0; l < L; ++l)
+    if (fallback[l] || running[l]) {  // left the basin, or 8 iterations were not enough
+      R[l] = closest_rotation(M[l]);
+      q[l] = Eigen::Quaterniond(R[l]);
+    }
+}
+
+inline void closest_rotation_warm(const Eigen::Matrix3d& M, Eigen::Quaterniond& q, Eigen::Matrix3d& R) {
+  const bool active = true;
+  closest_rotation_warm_lanes<1>(&M, &q, &R, &active);
 }
 
 inline Eigen::Matrix3d closest_rotation_warm(const Eigen::Matrix3d& M, Eigen::Quaterniond& q) {
