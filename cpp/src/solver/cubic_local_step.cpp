@@ -198,7 +198,12 @@ void CubicLocalStep::fit(const MeshTopology& topo, const std::vector<Matrix3d>& 
         // R: min ARAP + rho/2 ||R n - Q (z - u)||^2, i.e. the closest rotation to M + rho Q (z - u) n^T.
         const int f = frame_[a.v];
         const Vector3d t = frame_is_identity_[f] ? Vector3d(a.z - a.u) : Vector3d(frames_[f] * (a.z - a.u));
-        target[l] = a.M + (a.rho * t) * normal_[a.v].transpose();
+        // target = M + (rho t) n^T, coefficient by coefficient (Eigen's expression went through
+        // misaligned stack temporaries here).
+        const Vector3d rt = a.rho * t;
+        const Vector3d& n = normal_[a.v];
+        for (int c = 0; c < 3; ++c)
+          for (int r = 0; r < 3; ++r) target[l](r, c) = a.M(r, c) + rt[r] * n[c];
       }
       const bool active[2] = {lane[0].fitting, lane[1].fitting};
       closest_rotation_warm_lanes<2>(target, q, R, active);
