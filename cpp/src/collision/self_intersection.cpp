@@ -126,7 +126,7 @@ void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, cons
 }
 
 int64_t SelfIntersectionGuard::bytes_needed(int64_t num_vertices, int64_t num_faces) {
-  return FaceBvh::bytes_needed(num_faces) + (24 + 4 + 4 + 4 + 2) * num_vertices;
+  return FaceBvh::bytes_needed(num_faces) + (24 + 4 + 4 + 4 + 2 + 24 + 24 + 1) * num_vertices;
 }
 
 bool SelfIntersectionGuard::in_contact(int f, int g, const std::vector<Vector3d>& X) const {
@@ -147,7 +147,7 @@ std::vector<uint64_t> SelfIntersectionGuard::contacts(const std::vector<Vector3d
   bvh_.for_overlapping_pairs([&](int f, int g) {
     if (!in_contact(f, g, X)) return;
     const uint64_t key = pair_key(f, g);
-    if (skip_allowed && std::binary_search(allowed_.begin(), allowed_.end(), key)) return;
+    if (skip_allowed && allowed(key, f, g, X)) return;
     sink.add(key);
   }, true);
   std::sort(sink.keys.begin(), sink.keys.end());
@@ -162,19 +162,64 @@ std::vector<uint64_t> SelfIntersectionGuard::contacts_of(const std::vector<int>&
   bvh_.for_pairs_with(faces, [&](int f, int g) {
     if (!in_contact(f, g, X)) return;
     const uint64_t key = pair_key(f, g);
-    if (!std::binary_search(allowed_.begin(), allowed_.end(), key)) keys.push_back(key);
+    if (!allowed(key, f, g, X)) keys.push_back(key);
   });
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   return keys;
 }
 
+bool SelfIntersectionGuard::allowed(uint64_t key, int f, int g, const std::vector<Vector3d>& X) const {
+  if (!std::binary_search(allowed_.begin(), allowed_.end(), key)) return false;
+  if (std::binary_search(crossing_.begin(), crossing_.end(), key)) return true;
+  Triangle a, b;  // touching at the start: allowed while it does not cross
+  const int shared = arrange(topo_->faces[f], topo_->faces[g], X, a, b);
+  return !triangles_cross(a, b, shared);
+}
+
 void SelfIntersectionGuard::start_from(const std::vector<Vector3d>& X) {
   allowed_.clear();
   allowed_ = contacts(X, false);
+  crossing_.clear();
+  for (uint64_t key : allowed_) {
+    Triangle a, b;
+    const int shared =
+        arrange(topo_->faces[key >> 32], topo_->faces[static_cast<int>(key & 0xffffffffu)], X, a, b);
+    if (triangles_cross(a, b, shared)) crossing_.push_back(key);
+  }
 }
 
 int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<Vector3d>& X) {
+  const int nV = static_cast<int>(X.size());
+  double longest = 0;
+  for (int v = 0; v < nV; ++v) longest = std::max(longest, (X[v] - safe[v]).cwiseAbs().maxCoeff());
+  constexpr int kMaxStages = 256;
+  const int stages = static_cast<int>(std::min<double>(kMaxStages, std::max(1.0, std::ceil(longest / kStageMove))));
+  if (stages == 1) {
+    limit_stage(safe, X);
+    return last_held_;
+  }
+  if (move_.size() != X.size()) {
+    move_.resize(nV);
+    stage_start_.resize(nV);
+    ever_held_.assign(nV, 0);
+  }
+  for (int v = 0; v < nV; ++v) move_[v] = (X[v] - safe[v]) / stages;
+  stage_start_ = safe;
+  std::vector<int> held_in_any;
+  for (int stage = 0; stage < stages; ++stage) {
+    for (int v = 0; v < nV; ++v) X[v] = stage_start_[v] + move_[v];
+    limit_stage(stage_start_, X);
+    for (int v : held_)
+      if (!ever_held_[v]) ever_held_[v] = 1, held_in_any.push_back(v);
+    stage_start_ = X;
+  }
+  for (int v : held_in_any) ever_held_[v] = 0;
+  last_held_ = static_cast<int>(held_in_any.size());
+  return last_held_;
+}
+
+void SelfIntersectionGuard::limit_stage(const std::vector<Vector3d>& safe, std::vector<Vector3d>& X) {
   const MeshTopology& topo = *topo_;
   // A held vertex's step is halved per round down to kSmallestFraction, then taken back to `safe`
   // outright; after kMaxRounds rounds every vertex goes back (never needed in the cases measured, but
@@ -214,7 +259,6 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
   }
   last_held_ = static_cast<int>(held_.size());
   for (int v : held_) step_fraction_[v] = 1.0f;
-  return last_held_;
 }
 
 }  // namespace gauss

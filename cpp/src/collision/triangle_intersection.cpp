@@ -12,11 +12,24 @@ namespace {
 
 // Signed distances (scaled by |n|) of t's corners from the plane through `origin` with normal n. The
 // first `shared` corners lie on the plane by construction (they are corners of the plane's triangle):
-// they get an exact 0, which a product of rounded coordinates would not give.
-Vector3d plane_sides(const Vector3d& n, const Vector3d& origin, const Triangle& t, int shared) {
+// they get an exact 0, which a product of rounded coordinates would not give; so does a corner within
+// `on_plane` (rounding: two faces of one flat region are coplanar, not crossing by 1e-17).
+Vector3d plane_sides(const Vector3d& n, const Vector3d& origin, const Triangle& t, int shared, double on_plane) {
   Vector3d d;
-  for (int i = 0; i < 3; ++i) d[i] = i < shared ? 0.0 : n.dot(t.col(i) - origin);
+  for (int i = 0; i < 3; ++i) {
+    d[i] = i < shared ? 0.0 : n.dot(t.col(i) - origin);
+    if (std::abs(d[i]) <= on_plane) d[i] = 0.0;
+  }
   return d;
+}
+
+// How far off a plane counts as on it, for sides scaled by |n| (n a triangle's area vector): a
+// relative 1e-12 of the pair's size, a thousand roundings of the coordinates.
+double on_plane_tolerance(const Vector3d& n, const Triangle& a, const Triangle& b) {
+  double size = 0;
+  for (int i = 0; i < 3; ++i)
+    size = std::max({size, (a.col(i) - a.col(0)).cwiseAbs().maxCoeff(), (b.col(i) - a.col(0)).cwiseAbs().maxCoeff()});
+  return 1e-12 * size * n.norm();
 }
 
 bool one_side(const Vector3d& d) { return (d.array() > 0).all() || (d.array() < 0).all(); }
@@ -101,9 +114,9 @@ bool triangles_cross(const Triangle& a, const Triangle& b, int shared) {
   if (shared >= 2) return false;
   const Vector3d na = (a.col(1) - a.col(0)).cross(a.col(2) - a.col(0));
   const Vector3d nb = (b.col(1) - b.col(0)).cross(b.col(2) - b.col(0));
-  const Vector3d db = plane_sides(na, a.col(0), b, shared);
+  const Vector3d db = plane_sides(na, a.col(0), b, shared, on_plane_tolerance(na, a, b));
   if (one_side(db) || db.isZero(0.0)) return false;  // apart, or coplanar (not counted, as in Blender)
-  const Vector3d da = plane_sides(nb, b.col(0), a, shared);
+  const Vector3d da = plane_sides(nb, b.col(0), a, shared, on_plane_tolerance(nb, a, b));
   if (one_side(da) || da.isZero(0.0)) return false;
   const Vector3d u = na.cross(nb);
   if (u.isZero(0.0)) return false;  // parallel planes that both straddle: rounding of a coplanar pair
@@ -136,7 +149,7 @@ bool triangles_closer_than(const Triangle& a, const Triangle& b, int shared, dou
     const Vector3d n = (s.col(1) - s.col(0)).cross(s.col(2) - s.col(0));
     const double length = n.norm();
     if (!(length > 0)) continue;
-    const Vector3d d = plane_sides(n / length, s.col(0), t, 0);
+    const Vector3d d = plane_sides(n / length, s.col(0), t, 0, 0.0);
     if ((d.array() > margin).all() || (d.array() < -margin).all()) return false;
   }
   return triangle_distance(a, b) < margin;

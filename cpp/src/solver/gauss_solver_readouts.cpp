@@ -21,9 +21,12 @@ void GaussSolver::write_vertices(T* out) const {
     out[3 * old + 1] = static_cast<T>(p.y());
     out[3 * old + 2] = static_cast<T>(p.z());
   }
-  // Pins are returned exactly as given, not through the normalization round trip.
-  for (size_t i = 0; i < pinned_input_.size(); ++i)
+  // Pins are returned exactly as given, not through the normalization round trip; but for a pin the
+  // self-intersection guard holds short of its target (where X_ is not the target's image).
+  for (size_t i = 0; i < pinned_input_.size(); ++i) {
+    if (guard_ && X_[new_of_old_[pinned_input_[i]]] != Vector3d((pin_targets_[i] - center_) / scale_)) continue;
     for (int k = 0; k < 3; ++k) out[3 * pinned_input_[i] + k] = static_cast<T>(pin_targets_[i][k]);
+  }
 }
 
 void GaussSolver::copy_vertices(double* out) const { write_vertices(out); }

@@ -17,7 +17,8 @@
 // a step can stop short, never pass through. This is the intersection-free line search of Incremental
 // Potential Contact (Li et al. 2020) made local to the faces involved, on the discrete states a run
 // shows (the states between two steps are not checked: the margin keeps faces apart by more than
-// rounding, and a step moves a vertex far less than the mesh is thick where the style pushes).
+// rounding, and a move of more than kStageMove is checked in stages of at most that: a part thinner
+// than that could still be passed through in one stage).
 // Pinned vertices are held back like the others: a handle dragged into the mesh leaves its pins short
 // of their targets while going further would pass through.
 //
@@ -40,6 +41,11 @@ namespace gauss {
 // frame, whose longest bounding-box side is 1: 1e-4 is 0.01% of the mesh's size, a thousand times
 // float32's rounding there, and well below the edge lengths of meshes up to millions of faces.
 inline constexpr double kContactMargin = 1e-4;
+// The longest move of a vertex checked at once (normalized frame): a longer step or pin move (a
+// handle dragged far in one go) is checked in stages, so that it cannot jump through a part thicker
+// than this. 2% of the mesh's size: at 0.5% the first steps of a strong style took several stages,
+// and the guard cost 4 times a step on the 35K bunny.
+inline constexpr double kStageMove = 2e-2;
 
 // Unordered pairs of faces that cross. faces: #F by 3; X: #V by 3 (any frame).
 int64_t count_self_intersections(const std::vector<std::array<int, 3>>& faces, const std::vector<Eigen::Vector3d>& X);
@@ -51,8 +57,9 @@ class SelfIntersectionGuard {
   // positions the hierarchy is built on (the rest mesh).
   SelfIntersectionGuard(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& X0);
 
-  // Takes the pairs in contact at X (#V by 3, normalized frame) as the start: they may stay (a mesh
-  // that already intersects keeps those pairs), every other pair must never come into contact.
+  // Takes the pairs in contact at X (#V by 3, normalized frame) as the start: those that cross may
+  // go on crossing (a mesh that already intersects keeps those pairs), those that only touch must
+  // never cross, and every other pair must never come into contact.
   void start_from(const std::vector<Eigen::Vector3d>& X);
 
   // safe: the state before the step (no new contacts); X: the step's result, changed in place to the
@@ -69,6 +76,10 @@ class SelfIntersectionGuard {
   static int64_t bytes_needed(int64_t num_vertices, int64_t num_faces);
 
  private:
+  // One stage of limit(): a move from `safe` to X no longer than kStageMove.
+  void limit_stage(const std::vector<Eigen::Vector3d>& safe, std::vector<Eigen::Vector3d>& X);
+  // Whether a contact of this pair at X is one the start allows.
+  bool allowed(uint64_t key, int f, int g, const std::vector<Eigen::Vector3d>& X) const;
   // Pairs (f < g, as f * 2^32 + g) in contact at X, without the allowed ones if skip_allowed; sorted.
   std::vector<uint64_t> contacts(const std::vector<Eigen::Vector3d>& X, bool skip_allowed);
 
@@ -84,7 +95,11 @@ class SelfIntersectionGuard {
   FaceBvh bvh_;
   std::vector<uint8_t> closed_star_;      // #V: every edge at the vertex has two faces
   std::vector<uint8_t> flat_star_;        // #V, per check
-  std::vector<uint64_t> allowed_;         // sorted
+  std::vector<uint64_t> allowed_;         // sorted: in contact at the start
+  std::vector<uint64_t> crossing_;        // sorted: crossing at the start (a subset)
+  std::vector<Eigen::Vector3d> move_;     // #V: a staged move's whole displacement
+  std::vector<Eigen::Vector3d> stage_start_;  // #V
+  std::vector<uint8_t> ever_held_;        // #V: held in some stage of the current limit()
   std::vector<Eigen::Vector3d> candidate_;  // #V: the step's result before limit()
   std::vector<float> step_fraction_;      // #V: t of every vertex in the current limit(), 1 outside it
   std::vector<uint32_t> round_stamp_;     // #V: the last round that stepped the vertex back
