@@ -249,6 +249,12 @@ void GaussSolver::admm_round(bool first_round) {
 }
 
 void GaussSolver::assemble_rhs(bool with_edges) {
+  if (!with_edges) {  // the cubic method: plain ARAP's global step, the same sum folded per vertex
+    parallel::for_each(laplacian_.num_unknowns(), parallel::kMinParallelItems, [&](int u) {
+      laplacian_.set_rhs(u, laplacian_.constant_rhs(u) + cubic_.global_rhs(laplacian_.vertex_of_unknown(u), rotation_));
+    });
+    return;
+  }
   const int nF = static_cast<int>(topo_.faces.size());
   const double lam = lambda_, inv = 1.0 / (1.0 + lambda_);
   parallel::for_each(nF, parallel::kMinParallelItems, [&](int f) {
@@ -259,7 +265,6 @@ void GaussSolver::assemble_rhs(bool with_edges) {
     Vector3d d[3];
     for (int k = 0; k < 3; ++k) {
       d[k] = Rf * slot_rest_[f][k];
-      if (!with_edges) continue;  // the cubic method: plain ARAP's global step
       const double s = topo_.face_edge_sign[f][k];
       d[k] = (d[k] + (lam * slot_weight_[f][k] * s) * edge_star_[topo_.face_edge[f][k]]) * inv;
     }
