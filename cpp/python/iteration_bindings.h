@@ -49,6 +49,18 @@ void bind_iteration(pybind11::class_<SolverWrapper>& cls) {
         s.core().set_keep_volume(on);
       }, "After each step, scale every component without a pin uniformly about its centroid back to its\n"
          "rest volume (closed components) or surface area (open ones). Default: DEFAULTS['keep_volume'].");
+  cls.def_property("avoid_self_intersections", [](SolverWrapper& s) { return s.core().avoid_self_intersections(); },
+      [](SolverWrapper& s, bool on) {
+        std::lock_guard<std::mutex> lock(s.mutex());
+        s.core().set_avoid_self_intersections(on);
+      }, "No step (nor a move of the pins) brings two faces into contact that were not in contact when\n"
+         "it was switched on (or at reset() and set_vertices()): vertices that would are held back, so the\n"
+         "result never passes through itself where the input did not. Costs up to about a step's time.\n"
+         "Default: DEFAULTS['avoid_self_intersections'].");
+  cls.def_property_readonly("held_vertices", [](SolverWrapper& s) {
+        std::lock_guard<std::mutex> lock(s.mutex());
+        return s.core().held_vertices();
+      }, "Vertices avoid_self_intersections held back in the last step or pin move (0 when it is off).");
   cls.def_property("acceleration", [](SolverWrapper& s) { return s.core().acceleration(); },
       [](SolverWrapper& s, bool on) {
         std::lock_guard<std::mutex> lock(s.mutex());

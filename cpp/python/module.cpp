@@ -17,4 +17,5 @@ PYBIND11_MODULE(gauss_core, m) {
   gauss_python::bind_threads(m);
   gauss_python::bind_style(m);
   gauss_python::bind_solver(m);
+  gauss_python::bind_self_intersections(m);
 }

@@ -15,5 +15,7 @@ void bind_threads(pybind11::module_& m);
 void bind_style(pybind11::module_& m);
 // Solver (solver_bindings.cpp): set-up, styles, pins, stepping and read-outs of one mesh.
 void bind_solver(pybind11::module_& m);
+// self_intersections (collision_bindings.cpp): the pairs of faces that pass through each other.
+void bind_self_intersections(pybind11::module_& m);
 
 }  // namespace gauss_python

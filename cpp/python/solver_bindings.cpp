@@ -46,7 +46,7 @@ class Solver {
   // thread (Blender's UI timer) can watch or cancel the progress meanwhile.
   Solver(const py::object& V, const py::object& F, const py::object& pinned, const py::object& pin_positions,
          double lam, int admm_iterations, const std::string& method, double cubic_lambda, double tolerance,
-         bool keep_volume, bool acceleration, const py::object& progress) {
+         bool keep_volume, bool acceleration, bool avoid_self_intersections, const py::object& progress) {
     const gauss::Method chosen = parse_method(method);  // refused before the set-up's cost
     settings::cubic_lambda.check(cubic_lambda);
     settings::tolerance.check(tolerance);
@@ -73,6 +73,7 @@ class Solver {
     solver_->set_tolerance(tolerance);
     solver_->set_keep_volume(keep_volume);
     solver_->set_acceleration(acceleration);
+    solver_->set_avoid_self_intersections(avoid_self_intersections);
     styles_.push_back(make_style(settings::default_preset, gauss::default_style()));
   }
 
@@ -197,27 +198,30 @@ Gauss stylization of one triangle mesh. The constructor does the set-up (normali
 weights, topology, sparse Cholesky factorization); step() runs Algorithm 1 of the paper.
 
 Solver(V, F, pinned=None, pin_positions=None, lam, admm_iterations, method, cubic_lambda, tolerance,
-       keep_volume, acceleration, progress=None)
+       keep_volume, acceleration, avoid_self_intersections, progress=None)
   (defaults and ranges: DEFAULTS, LIMITS)
   V: (#V, 3) float32/float64 coordinates.  F: (#F, 3) int32/int64 triangle indices.
   pinned: (#P,) vertex indices that keep their position; pin_positions: (#P, 3) targets
   (default: their rest positions).  lam: lambda.  admm_iterations: ADMM rounds per step.
   method: one of METHODS, any case ('gauss': this paper; 'cubic': Cubic Stylization, whose strength is
   cubic_lambda, scaled per face by its style's mu and turned by its style's rotation).
-  tolerance: the reldV below which `converged` is True.  keep_volume, acceleration: see the properties.
+  tolerance: the reldV below which `converged` is True.  keep_volume, acceleration,
+  avoid_self_intersections: see the properties.
   progress: a gauss_core.Progress to watch or cancel the set-up from another thread (the
   set-up releases the GIL); a cancelled set-up raises gauss_core.Cancelled.
 Raises MemoryError if the mesh's factorization would not fit in the available memory.
 By default one style, DEFAULTS['preset'] with the default sigma and mu, applies to every face.)doc")
       .def(py::init<const py::object&, const py::object&, const py::object&, const py::object&, double, int,
-                    const std::string&, double, double, bool, bool, const py::object&>(),
+                    const std::string&, double, double, bool, bool, bool, const py::object&>(),
            py::arg("V"), py::arg("F"), py::arg("pinned") = py::none(), py::arg("pin_positions") = py::none(),
            py::arg("lam") = settings::lambda.default_value,
            py::arg("admm_iterations") = static_cast<int>(settings::admm_iterations.default_value),
            py::arg("method") = settings::default_method, py::arg("cubic_lambda") = settings::cubic_lambda.default_value,
            py::arg("tolerance") = settings::tolerance.default_value,
            py::arg("keep_volume") = settings::keep_volume.default_value,
-           py::arg("acceleration") = settings::acceleration.default_value, py::arg("progress") = py::none())
+           py::arg("acceleration") = settings::acceleration.default_value,
+           py::arg("avoid_self_intersections") = settings::avoid_self_intersections.default_value,
+           py::arg("progress") = py::none())
       .def("set_styles", &Solver::set_styles, py::arg("styles"),
            "Replaces the style list (takes effect at the next step, no re-factorization).")
       .def("set_style", &Solver::set_style, py::arg("index"), py::arg("style"), "Replaces one style.")

@@ -13,7 +13,7 @@ from meshes import icosphere
 
 SETTINGS = ("lam", "sigma", "mu", "axis_contribution", "admm_iterations", "cubic_lambda", "tolerance")
 INTEGER = {"admm_iterations"}
-OPTIONS = ("keep_volume", "acceleration")  # on/off: a bool default, no limits
+OPTIONS = ("keep_volume", "acceleration", "avoid_self_intersections")  # on/off: a bool default, no limits
 LABEL = {"lam": "lambda", "admm_iterations": "ADMM iterations", "cubic_lambda": "cubic lambda"}  # in messages
 V, F = icosphere(2)
 

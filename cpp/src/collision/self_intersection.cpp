@@ -59,7 +59,8 @@ struct PairSink {
 
 }  // namespace
 
-int64_t count_self_intersections(const std::vector<std::array<int, 3>>& faces, const std::vector<Vector3d>& X) {
+std::vector<std::array<int, 2>> self_intersecting_pairs(const std::vector<std::array<int, 3>>& faces,
+                                                        const std::vector<Vector3d>& X) {
   FaceBvh bvh(faces, X);
   bvh.refit(X, 0.0);
   PairSink sink;
@@ -68,7 +69,15 @@ int64_t count_self_intersections(const std::vector<std::array<int, 3>>& faces, c
     const int shared = arrange(faces[f], faces[g], X, a, b);
     if (triangles_cross(a, b, shared)) sink.add(pair_key(f, g));
   }, false);
-  return static_cast<int64_t>(sink.keys.size());
+  std::sort(sink.keys.begin(), sink.keys.end());
+  std::vector<std::array<int, 2>> pairs(sink.keys.size());
+  for (size_t i = 0; i < pairs.size(); ++i)
+    pairs[i] = {static_cast<int>(sink.keys[i] >> 32), static_cast<int>(sink.keys[i] & 0xffffffffu)};
+  return pairs;
+}
+
+int64_t count_self_intersections(const std::vector<std::array<int, 3>>& faces, const std::vector<Vector3d>& X) {
+  return static_cast<int64_t>(self_intersecting_pairs(faces, X).size());
 }
 
 SelfIntersectionGuard::SelfIntersectionGuard(const MeshTopology& topo, const std::vector<Vector3d>& X0)

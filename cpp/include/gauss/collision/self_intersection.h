@@ -47,7 +47,11 @@ inline constexpr double kContactMargin = 1e-4;
 // and the guard cost 4 times a step on the 35K bunny.
 inline constexpr double kStageMove = 2e-2;
 
-// Unordered pairs of faces that cross. faces: #F by 3; X: #V by 3 (any frame).
+// The unordered pairs of faces that cross, #P by 2 (f < g, indices into faces, sorted). faces: #F by 3
+// (no repeated corner); X: #V by 3 (any frame).
+std::vector<std::array<int, 2>> self_intersecting_pairs(const std::vector<std::array<int, 3>>& faces,
+                                                        const std::vector<Eigen::Vector3d>& X);
+// Their number.
 int64_t count_self_intersections(const std::vector<std::array<int, 3>>& faces, const std::vector<Eigen::Vector3d>& X);
 
 class SelfIntersectionGuard {
