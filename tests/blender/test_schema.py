@@ -103,6 +103,8 @@ LIVE_CHANGES = {
     ("object", "cubic_lambda"): ({}, dict(method='CUBIC'), 0.8),
     ("object", "admm_iterations"): ({}, {}, 3),
     ("object", "keep_volume"): ({}, {}, True),
+    # Suzanne's eyes touch her head: at lambda 20 the guard holds them back.
+    ("object", "avoid_self_intersections"): ({}, dict(lam=20.0), True),
 }
 # Live settings that change what the solver says about the shape, not the shape: the value changed to.
 LIVE_READOUTS = {

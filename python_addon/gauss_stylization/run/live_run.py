@@ -224,6 +224,9 @@ class LiveRun:
                 text += "  |  %.1f ms/tick" % self.tick_ms[-1]
         for session, why in self.paused.items():
             text += "  |  " + (("'%s' paused: " % session.name) if len(sessions) > 1 else "paused: ") + why
+        held = sum(session.solver.held_vertices for session in sessions)
+        if held:
+            text += "  |  %d vertices held back from passing through" % held
         for session in sessions:
             busy = session.busy
             if busy is not None:

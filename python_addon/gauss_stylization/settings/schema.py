@@ -154,6 +154,10 @@ OBJECT = (
     Bool("keep_volume", "Keep Volume", "After each step scale every closed part of the mesh about its centre "
          "back to its original volume (open parts: to their original area; parts with pinned vertices are "
          "left alone), so the shape does not shrink", live=Live.SETTER, panel=Panel.SOLVER),
+    Bool("avoid_self_intersections", "Avoid Self-Intersections", "Never let the surface pass through itself: "
+         "where a step would make faces cross or touch that did not at the start, their vertices are held "
+         "back (for 3D printing and carving; costs up to about one more step's time)",
+         live=Live.SETTER, panel=Panel.SOLVER),
     Bool("use_modifiers", "Use Modifiers", "Stylize the mesh as it is shown: modifiers, armature and shape "
          "keys at the current frame (otherwise the base mesh, under the modifiers)", default=False,
          panel=Panel.MAIN),
