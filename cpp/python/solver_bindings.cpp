@@ -94,6 +94,20 @@ class Solver {
     std::lock_guard<std::mutex> lock(mutex_);
     solver_->set_face_styles(s.data(), static_cast<int>(s.size()));
   }
+  void set_face_weights(const py::object& weights, const py::object& vertex_weights) {
+    // The columns are the caller's (at most one per style): read them off a 2-d array; anything
+    // else is read as one column per style, whose check names the shape expected.
+    const py::array arr = py::array::ensure(weights);
+    const py::ssize_t cols = arr && arr.ndim() == 2 ? arr.shape(1) : solver_->num_styles();
+    std::vector<double> w = read_matrix<double>(weights, cols, "face_weights", false);
+    std::vector<double> vw;
+    if (!vertex_weights.is_none()) vw = read_matrix<double>(vertex_weights, cols, "vertex_weights", false);
+    const int rows = cols > 0 ? static_cast<int>(w.size() / cols) : static_cast<int>(arr ? arr.shape(0) : 0);
+    const int vertex_rows = cols > 0 ? static_cast<int>(vw.size() / cols) : solver_->num_vertices();
+    std::lock_guard<std::mutex> lock(mutex_);
+    solver_->set_face_weights(w.data(), rows, static_cast<int>(cols), vertex_weights.is_none() ? nullptr : vw.data(),
+                              vertex_rows);
+  }
   void set_pins(const py::object& pinned, const py::object& positions, const py::object& progress) {
     std::vector<int64_t> pins;
     std::vector<double> targets;
@@ -228,6 +242,13 @@ By default one style, DEFAULTS['preset'] with the default sigma and mu, applies 
       .def_property_readonly("styles", &Solver::styles, "The current style list.")
       .def("set_face_styles", &Solver::set_face_styles, py::arg("face_styles"),
            "(#F,) ints: style index per face, -1 = unstyled (pure ARAP). No re-factorization.")
+      .def("set_face_weights", &Solver::set_face_weights, py::arg("face_weights"),
+           py::arg("vertex_weights") = py::none(),
+           "(#F, k) floats in [0, 1], k <= len(styles): each face's weight for each of the first k styles (the\n"
+           "others weigh 0). A face's preference is the weight-scaled sum of its styles' (mu_s * w_s each);\n"
+           "all 0: unstyled. One weight of 1 on a face is exactly set_face_styles with that style.\n"
+           "vertex_weights: optional (#V, k) floats in [0, 1], the cubic method's per-vertex weights (without\n"
+           "them a vertex takes its faces'). Replaces set_face_styles' assignment. No re-factorization.")
       .def("set_pins", &Solver::set_pins, py::arg("pinned"), py::arg("positions") = py::none(),
            py::arg("progress") = py::none(),
            "Sets the pinned vertices and their targets (re-factors; releases the GIL; progress as in the\n"

@@ -25,7 +25,7 @@ using Clock = std::chrono::steady_clock;
 
 // Memory the solver keeps per face (topology, rest quantities, ADMM buffers, edges) and per vertex,
 // rounded down from its members' sizes, for the early memory check. Per face, counting 1.5 edges a
-// face: topology 73 bytes, rest quantities 132, styles 4, step buffers 164 (373 in all); per vertex:
+// face: topology 73 bytes, rest quantities 132, styles 12, step buffers 164 (381 in all); per vertex:
 // numbering and topology 12, positions 72, rotations 104, the iteration's 81, the constrained
 // system's 56 (325; the factor is checked on its own).
 constexpr int64_t kSetupBytesPerFace = 360, kSetupBytesPerVertex = 320;
@@ -120,6 +120,7 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
 
   styles_.emplace_back(default_style());
   face_style_.assign(nF, 0);
+  face_weight_.assign(nF, 1.0);
   apply_pins(pinned, pin_positions, progress);
   progress.finish();
 }
@@ -161,19 +162,27 @@ void GaussSolver::face_pass() {
     const double size = e[0].squaredNorm() + e[1].squaredNorm() + e[2].squaredNorm();
     const bool degenerate = !(len > 1e-12 * size) || !std::isfinite(len);
     const int s = face_style_[f];
-    face_mu_[f] = (!degenerate && s >= 0) ? styles_[s].mu() : 0.0;
+    face_mu_[f] = degenerate || s == -1 ? 0.0 : s >= 0 ? styles_[s].mu() * face_weight_[f] : blend_mu_[-2 - s];
     dual_[f] = {0, 0, 0};
     if (face_mu_[f] > 0.0) {
       // The sign of e*_ij does not matter while u = 0 (both terms are even in e*).
       const double lw[3] = {lam * slot_edge_weight_[f][0], lam * slot_edge_weight_[f][1],
                             lam * slot_edge_weight_[f][2]};
-      normal_star_[f] = newton_normal(styles_[s], c / len, e, lw, zero);
+      normal_star_[f] = normal_update(s, c / len, e, lw, zero);
     }
     Matrix3d cov = e[0] * slot_rest_[f][0].transpose();
     cov.noalias() += e[1] * slot_rest_[f][1].transpose();
     cov.noalias() += e[2] * slot_rest_[f][2].transpose();
     face_scratch_[f] = cov;
   });
+}
+
+Vector3d GaussSolver::normal_update(int s, const Vector3d& n, const Vector3d* es, const double* lw,
+                                    const double* u) const {
+  if (s >= 0) return newton_normal(styles_[s], n, es, lw, u);
+  const int b = -2 - s;
+  return newton_normal(styles_.data(), &blend_shares_[blend_start_[b]], blend_start_[b + 1] - blend_start_[b], n, es,
+                       lw, u);
 }
 
 void GaussSolver::fit_rotations() {
@@ -201,7 +210,7 @@ void GaussSolver::admm_round(bool first_round) {
       for (int k = 0; k < 3; ++k) dual_[f][k] += es[k].dot(n);
       const double lw[3] = {lam * slot_edge_weight_[f][0], lam * slot_edge_weight_[f][1],
                             lam * slot_edge_weight_[f][2]};
-      normal_star_[f] = newton_normal(styles_[face_style_[f]], n, es, lw, dual_[f].data());
+      normal_star_[f] = normal_update(face_style_[f], n, es, lw, dual_[f].data());
     });
   }
   // Edges (Eq. 24): (I + sum mu n n^T) e* = e - sum mu u n over the styled faces of the edge.

@@ -1,5 +1,5 @@
-// GaussSolver between steps: styles, parameters, pins and the current vertices. Everything here takes
-// effect at the next step; only set_pins() re-factors (see constrained_laplacian.h).
+// GaussSolver between steps: parameters, pins and the current vertices (styles: gauss_solver_styles.cpp).
+// Everything here takes effect at the next step; only set_pins() re-factors (see constrained_laplacian.h).
 #include <algorithm>
 #include <cstdint>
 #include <sstream>
@@ -15,49 +15,6 @@
 namespace gauss {
 
 using Eigen::Vector3d;
-
-void GaussSolver::set_styles(std::vector<PreferenceFunction> styles) {
-  for (int s : face_style_)
-    if (s >= static_cast<int>(styles.size())) {
-      std::ostringstream msg;
-      msg << "faces use style " << s << " but only " << styles.size()
-          << " styles were given; assign face styles that fit the new list first";
-      throw std::invalid_argument(msg.str());
-    }
-  styles_ = std::move(styles);
-  update_cubic_styles();
-  iteration_.invalidate();
-}
-
-void GaussSolver::set_style(int index, PreferenceFunction style) {
-  if (index < 0 || index >= num_styles()) {
-    std::ostringstream msg;
-    msg << "style index " << index << " is out of range (there are " << num_styles() << " styles)";
-    throw std::invalid_argument(msg.str());
-  }
-  styles_[index] = std::move(style);
-  update_cubic_styles();
-  iteration_.invalidate();
-}
-
-void GaussSolver::set_face_styles(const int64_t* style_of_input_face, int count) {
-  if (count != num_input_faces_) {
-    std::ostringstream msg;
-    msg << "face styles must have one entry per face (" << num_input_faces_ << "), got " << count;
-    throw std::invalid_argument(msg.str());
-  }
-  for (int i = 0; i < count; ++i)
-    if (style_of_input_face[i] < -1 || style_of_input_face[i] >= num_styles()) {
-      std::ostringstream msg;
-      msg << "face " << i << " has style " << style_of_input_face[i] << "; valid: -1 (unstyled) to "
-          << num_styles() - 1;
-      throw std::invalid_argument(msg.str());
-    }
-  for (size_t f = 0; f < topo_.faces.size(); ++f)
-    face_style_[f] = static_cast<int>(style_of_input_face[topo_.input_face[f]]);
-  update_cubic_styles();
-  iteration_.invalidate();
-}
 
 void GaussSolver::set_lambda(double lambda) {
   settings::lambda.check(lambda);
@@ -102,32 +59,6 @@ void GaussSolver::set_cubic_lambda(double lambda) {
   settings::cubic_lambda.check(lambda);
   cubic_lambda_ = lambda;
   iteration_.invalidate();
-}
-
-void GaussSolver::update_cubic_styles() {
-  if (!cubic_ready_) return;
-  const int nV = topo_.num_vertices;
-  std::vector<double> strength(nV, 0.0);
-  std::vector<int> frame(nV, 0);  // 0: no style (identity), s + 1: style s
-  std::vector<Eigen::Matrix3d> frames(1, Eigen::Matrix3d::Identity());
-  for (const PreferenceFunction& style : styles_) frames.push_back(style.rotation());
-  for (int v = 0; v < nV; ++v) {
-    const int begin = topo_.vertex_corner_start[v], end = topo_.vertex_corner_start[v + 1];
-    if (begin == end) continue;
-    double sum = 0;
-    int best = -1, best_count = 0;
-    for (int i = begin; i < end; ++i) {
-      const int s = face_style_[topo_.vertex_corners[i] / 3];
-      if (s < 0) continue;
-      sum += styles_[s].mu();
-      int count = 0;  // a vertex has a handful of faces: counting by scanning is cheapest
-      for (int j = begin; j < end; ++j) count += face_style_[topo_.vertex_corners[j] / 3] == s;
-      if (count > best_count || (count == best_count && s < best)) best = s, best_count = count;
-    }
-    strength[v] = sum / (end - begin);
-    frame[v] = best + 1;
-  }
-  cubic_.set_vertex_styles(strength, frame, frames);
 }
 
 std::vector<Vector3d> GaussSolver::checked_pin_targets(const std::vector<int64_t>& pinned,

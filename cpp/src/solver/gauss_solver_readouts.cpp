@@ -68,12 +68,17 @@ double GaussSolver::g_energy() const {
   double total = 0;
   for (size_t f = 0; f < topo_.faces.size(); ++f) {
     const int s = face_style_[f];
-    if (s < 0) continue;
+    if (s == -1) continue;
     const auto& t = topo_.faces[f];
     const Vector3d c = (X_[t[1]] - X_[t[0]]).cross(X_[t[2]] - X_[t[0]]);
     const double len = c.norm();
     if (!(len > 0) || !std::isfinite(len)) continue;
-    total += styles_[s].value(c / len);
+    if (s >= 0) {
+      total += face_weight_[f] * styles_[s].value(c / len);
+    } else {
+      for (int k = blend_start_[-2 - s]; k < blend_start_[-1 - s]; ++k)
+        total += blend_terms_[k].weight * styles_[blend_terms_[k].style].value(c / len);
+    }
   }
   return total;
 }

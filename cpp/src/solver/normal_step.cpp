@@ -22,12 +22,11 @@ bool solve_symmetric3(const Matrix3d& H, const Vector3d& b, Vector3d& x) {
   return x.allFinite();
 }
 
-Vector3d newton_normal(const PreferenceFunction& style, const Vector3d& n, const Vector3d* es, const double* lw,
-                       const double* u) {
-  double g;
-  Vector3d grad_g;
-  Matrix3d hess_g;
-  style.evaluate(n, g, grad_g, hess_g);
+namespace {
+
+// The Newton update of newton_normal() from g's gradient and Hessian at n.
+Vector3d newton_update(const Vector3d& grad_g, const Matrix3d& hess_g, const Vector3d& n, const Vector3d* es,
+                       const double* lw, const double* u) {
   Matrix3d H = -hess_g;
   Vector3d grad = -grad_g;
   for (int k = 0; k < 3; ++k) {
@@ -48,6 +47,32 @@ Vector3d newton_normal(const PreferenceFunction& style, const Vector3d& n, const
   const Vector3d m = n + d;
   const double len = m.norm();
   return (len > 1e-300 && std::isfinite(len)) ? Vector3d(m / len) : n;
+}
+
+}  // namespace
+
+Vector3d newton_normal(const PreferenceFunction& style, const Vector3d& n, const Vector3d* es, const double* lw,
+                       const double* u) {
+  double g;
+  Vector3d grad_g;
+  Matrix3d hess_g;
+  style.evaluate(n, g, grad_g, hess_g);
+  return newton_update(grad_g, hess_g, n, es, lw, u);
+}
+
+Vector3d newton_normal(const PreferenceFunction* styles, const StyleShare* shares, int count, const Vector3d& n,
+                       const Vector3d* es, const double* lw, const double* u) {
+  Vector3d grad_sum = Vector3d::Zero();
+  Matrix3d hess_sum = Matrix3d::Zero();
+  for (int k = 0; k < count; ++k) {
+    double g;
+    Vector3d grad_g;
+    Matrix3d hess_g;
+    styles[shares[k].style].evaluate(n, g, grad_g, hess_g);
+    grad_sum += shares[k].share * grad_g;
+    hess_sum += shares[k].share * hess_g;
+  }
+  return newton_update(grad_sum, hess_sum, n, es, lw, u);
 }
 
 }  // namespace gauss

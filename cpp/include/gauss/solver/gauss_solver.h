@@ -28,6 +28,7 @@
 #include "gauss/solver/constrained_laplacian.h"
 #include "gauss/solver/cubic_local_step.h"
 #include "gauss/solver/fixed_point_iteration.h"
+#include "gauss/solver/normal_step.h"
 #include "gauss/mesh/mesh_topology.h"
 #include "gauss/style/preference_function.h"
 #include "gauss/util/progress.h"
@@ -68,6 +69,18 @@ class GaussSolver {
   void set_style(int index, PreferenceFunction style);
   // Per input face: index into the style list, or -1 for an unstyled face (pure ARAP).
   void set_face_styles(const int64_t* style_of_input_face, int count);
+  // Per input face, a weight in [0, 1] for each of the first num_styles (<= num_styles()) styles
+  // (face_weights: num_faces by num_styles, row-major; the styles after them weigh 0): a face's
+  // preference is the weight-scaled sum of its styles', -sum_s w_s mu_s g_s(n_f), so a weight of 0.5
+  // stylizes half as strongly and a face whose weights are all 0 is unstyled. A face with one weight
+  // of 1 and the rest 0 steps exactly as set_face_styles() with that style makes it, and costs the same.
+  // vertex_weights (optional; #V by num_styles, caller's numbering, in [0, 1]): the cubic method's
+  // weight of each vertex for each style, which scales its strength (see set_method); without it a
+  // vertex takes the weights of its faces. Replaces what set_face_styles() set, and the reverse.
+  // Throws std::invalid_argument, changing nothing, on a count that does not fit or a weight that
+  // is NaN or outside [0, 1].
+  void set_face_weights(const double* face_weights, int num_faces, int num_styles,
+                        const double* vertex_weights = nullptr, int num_vertices = 0);
   int num_styles() const { return static_cast<int>(styles_.size()); }
 
   // --- Parameters: lambda only scales Eq. 27's right-hand side, so only set_pins() re-factors. ---
@@ -110,9 +123,11 @@ class GaussSolver {
   // --- Method: the next step's local step; pins, styles and the factorization stay. ---
   // The first switch to Method::cubic prepares its per-vertex data (O(#V), no factorization). With it,
   // a style's mu scales cubic_lambda on its faces and its rotation turns the cube; its preferred
-  // normals, sigma and lambda are not used. A vertex's strength is the mean mu of its faces
-  // (unstyled faces count 0), its orientation that of the style most of its faces have (ties: the
-  // lower style index).
+  // normals, sigma and lambda are not used. A vertex's strength is the mean over its faces of
+  // sum_s w_s mu_s for the face's styles s (unstyled faces count 0), where w_s is the vertex's own
+  // weight for s if set_face_weights() was given vertex weights, else the face's; its orientation
+  // that of the style whose weights over its faces sum highest (with weights 1: the style most of
+  // its faces have; ties: the lower style index).
   void set_method(Method method);
   Method method() const { return method_; }
   void set_cubic_lambda(double lambda);  // settings::cubic_lambda
@@ -149,7 +164,7 @@ class GaussSolver {
   void copy_vertices(double* out) const;  // #V by 3, caller's frame
   void copy_vertices(float* out) const;
   double arap_energy() const;  // E_ARAP of the current mesh with its optimal rotations (normalized frame)
-  double g_energy() const;     // E_g = sum over styled faces of g(n_f)
+  double g_energy() const;     // E_g = sum over faces of sum_s w_s g_s(n_f) (w: set_face_weights, else 1)
   int step_count() const { return step_count_; }
   int factorization_count() const { return factorization_count_; }
   int num_vertices() const { return topo_.num_vertices; }
@@ -174,8 +189,16 @@ class GaussSolver {
   void admm_round(bool first_round);
   // Eq. 27's right-hand side from rotation_; with_edges adds the Gauss method's lambda w e* terms.
   void assemble_rhs(bool with_edges);
-  // The cubic method's per-vertex strength and orientation from styles_ and face_style_.
+  // The cubic method's per-vertex strength and orientation from styles_ and the faces' styles.
   void update_cubic_styles();
+  // After styles_ or the faces' styles changed: blend_mu_ and blend_shares_ anew, then the cubic
+  // method's strengths.
+  void styles_changed();
+  // The highest style index any face uses (-1 if none).
+  int highest_face_style() const;
+  // The Gauss method's normal update (newton_normal) for face style code s (face_style_).
+  Eigen::Vector3d normal_update(int s, const Eigen::Vector3d& n, const Eigen::Vector3d* es, const double* lw,
+                                const double* u) const;
   // The targets (caller's frame) of the given pins (#P, caller's numbering) from #P by 3 positions
   // (nullptr: the rest positions); throws unless the pins are distinct vertices and every target is
   // finite and within settings::max_pin_distance times the mesh's size of it.
@@ -203,7 +226,22 @@ class GaussSolver {
 
   // Styles.
   std::vector<PreferenceFunction> styles_;
-  std::vector<int> face_style_;  // #F (solver faces), -1 = unstyled
+  // A face's styles: face_style_ s >= 0 is one style of weight face_weight_ (1 unless
+  // set_face_weights() gave another), -1 unstyled, and s <= -2 blend b = -2 - s, which has the
+  // styles and weights blend_terms_[blend_start_[b] .. blend_start_[b + 1]). Faces with one style,
+  // the common case, step as they did before blends existed.
+  struct BlendTerm {
+    int style;
+    double weight;
+  };
+  std::vector<int> face_style_;                 // #F (solver faces)
+  std::vector<double> face_weight_;             // #F
+  std::vector<int> blend_start_{0};             // #blends + 1
+  std::vector<BlendTerm> blend_terms_;
+  std::vector<double> blend_mu_;                // #blends: sum_s w_s mu_s (from styles_)
+  std::vector<StyleShare> blend_shares_;        // as blend_terms_: the normal update's shares
+  std::vector<double> vertex_weight_;           // #V by vertex_weight_styles_ (solver numbering) or empty
+  int vertex_weight_styles_ = 0;
 
   // Parameters, constraints and the global step's system.
   double lambda_ = settings::lambda.default_value;

@@ -26,4 +26,17 @@ bool solve_symmetric3(const Eigen::Matrix3d& H, const Eigen::Vector3d& b, Eigen:
 Eigen::Vector3d newton_normal(const PreferenceFunction& style, const Eigen::Vector3d& n, const Eigen::Vector3d* es,
                               const double* lw, const double* u);
 
+// One style of a face that blends several: the face's preference is sum_k share_k g_k(n), where
+// share_k = w_k mu_k / sum_j w_j mu_j (w: the face's weight for the style). The paper's rho = mu lambda,
+// taken with the face's summed mu, keeps the normal's local problem independent of mu.
+struct StyleShare {
+  int style;  // index into the style list
+  double share;
+};
+
+// newton_normal for the blend of `count` >= 1 styles (shares[k].style indexes `styles`): the same
+// update with g, its gradient and its Hessian summed over the styles, each scaled by its share.
+Eigen::Vector3d newton_normal(const PreferenceFunction* styles, const StyleShare* shares, int count,
+                              const Eigen::Vector3d& n, const Eigen::Vector3d* es, const double* lw, const double* u);
+
 }  // namespace gauss
