@@ -142,9 +142,10 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             if not live.sessions:
                 self.stop(context, keep=False)
                 return {'CANCELLED'}
-        if context.mode != 'OBJECT':
+        if context.mode not in {'OBJECT', 'PAINT_WEIGHT'}:
             # Edit Mode would overwrite a restore on exit, so keep what is there
-            # and let Reset (which has the start coordinates) take it back.
+            # and let Reset (which has the start coordinates) take it back. Weight Paint
+            # holds the painted object still (live_run.tick) and leaves its mesh to the run.
             self.stop(context, keep=True)
             self.report({'WARNING'}, "Stylize stopped: the object left Object Mode. "
                                      "Use Reset in Object Mode to get the original back")

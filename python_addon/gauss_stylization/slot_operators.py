@@ -101,7 +101,7 @@ class OBJECT_OT_gauss_style_remove(_StyleList, _RemoveActive, bpy.types.Operator
 
 
 class OBJECT_OT_gauss_style_move(_StyleList, bpy.types.Operator):
-    """Move the active style slot (later slots win where regions overlap)"""
+    """Move the active style slot (the last slot without a Region fills what the Regions leave)"""
     bl_idname = "object.gauss_style_move"
     bl_label = "Move Style"
 

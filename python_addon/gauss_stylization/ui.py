@@ -13,7 +13,7 @@ from .view.sidebar import GaussPanel, GaussSubPanel, draw_rows, mesh_object, spl
 
 
 class GAUSS_UL_styles(bpy.types.UIList):
-    """Style slots; later slots win where their regions overlap."""
+    """Style slots; where their Regions overlap, their weighted strengths add up."""
 
     def draw_item(self, context, layout, data, slot, icon, active_data, active_propname, index):
         split = layout.split(factor=0.5)

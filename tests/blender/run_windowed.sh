@@ -1,5 +1,5 @@
 #!/bin/sh
-# Drive the live (modal) Stylize operator in a real Blender window under Xvfb, in seven parts
+# Drive the live (modal) Stylize operator in a real Blender window under Xvfb, in eight parts
 # (windowed_kit.py: the helpers they share):
 #   windowed_driver.py       the basics (keys, clicks, shape keys, deleting things, files)
 #   windowed_live_run.py     undo during runs, the gizmo and other clicks, several objects, messages,
@@ -10,6 +10,7 @@
 #   windowed_panel.py        the sidebar redrawn by operators, labels that fit it, the sphere's highlight
 #                            and axis labels, the gpu state after draw callbacks, sidebar screenshots
 #   windowed_undo_save.py    undo, Del and saving in the middle of a run or a bake lose nothing
+#   windowed_paint_strength.py  Weight Paint strokes during a run, picked up back in Object Mode
 #   windowed_quit.py         quitting during a run must not save undo steps 0 in the preferences
 #   tests/blender/run_windowed.sh [BUILD_DIR]
 # Prints each part's result and "windowed summary: N passed, M failed"; exits non-zero on any
@@ -55,6 +56,7 @@ driver windowed_run_endings.py windowed_run_endings_result.txt
 driver windowed_interactive.py windowed_interactive_result.txt
 driver windowed_panel.py windowed_panel_result.txt
 driver windowed_undo_save.py windowed_undo_save_result.txt
+driver windowed_paint_strength.py windowed_paint_strength_result.txt
 
 # Quitting: the preferences live in a folder of their own, never the user's.
 CONFIG=$(mktemp -d)

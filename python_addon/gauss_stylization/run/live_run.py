@@ -104,6 +104,8 @@ class LiveRun:
             self.paused.pop(session, None)
             if session.busy is not None:  # the sync began re-factoring for new pins: wait for it
                 continue
+            if session.painting:  # held still while its weights are painted; read on the way back
+                continue
             if session.converged:  # and nothing changed since: no step, no CPU
                 continue
             try:

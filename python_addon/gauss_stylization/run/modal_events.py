@@ -91,7 +91,7 @@ def clicks(run, context, event):
     """A plain click (press and release without a drag) in the free viewport keeps the result;
     a right-click there cancels. Presses elsewhere (gizmo, headers, toolbar, sidebar, other
     editors) and every drag belong to Blender, so the press always goes on to it."""
-    if run.preparing:
+    if run.preparing or context.mode == 'PAINT_WEIGHT':  # in Weight Paint a click is a dab of paint
         return None
     x, y = event.mouse_x, event.mouse_y
     if event.type == 'MOUSEMOVE':  # a drag that came back to where it started is still a drag

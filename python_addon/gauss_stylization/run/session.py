@@ -60,7 +60,8 @@ class Plan:
     arrays:  its mesh_io.MeshArrays (coordinates, loop triangles, corners)
     weights: {vertex group name: (#V,) float32}, read once
     applied: the settings (settings_io.to_dict) the solver is built with
-    pins, styles, face_styles: the solver's inputs derived from them
+    pins, styles, regions: the solver's inputs derived from them (regions: the face and vertex
+             weights of Solver.set_face_weights)
     target:  output target (default: ``obj``'s Output, output.make_target), snapshot taken,
              nothing written yet
 
@@ -101,7 +102,7 @@ class Plan:
             self.styles = styles.make_styles(self.gauss_core, settings.styles)
         except (ValueError, TypeError) as exc:
             raise _solver_error(exc) from exc
-        self.face_styles = self.face_styles_for(settings)
+        self.regions = self.regions_for(settings)
         self.solver_options = {field.name: field.read(settings) for field in schema.SOLVER_SETTERS}
         self.target = target or output.make_target(obj, self.source)
 
@@ -109,9 +110,13 @@ class Plan:
         """Remove the source's evaluated mesh copy unless a target adopted it (safe to repeat)."""
         self.source.release()
 
-    def face_styles_for(self, settings):
+    def regions_for(self, settings, weights=None):
+        """(face weights, vertex weights) of the slots' Regions, from ``weights`` (default: the
+        group weights read at the start)."""
+        weights = self.weights if weights is None else weights
         groups = [slot.vertex_group for slot in settings.styles]
-        return styles.face_styles(self.arrays, self.weights, groups, settings.uncovered)
+        return (styles.face_weights(self.arrays, weights, groups, settings.uncovered),
+                styles.vertex_weights(weights, groups, settings.uncovered, self.arrays.num_vertices))
 
     @property
     def num_vertices(self):
@@ -170,7 +175,7 @@ class Session:
         self.applied = plan.applied
         try:
             solver.set_styles(plan.styles)
-            solver.set_face_styles(plan.face_styles)
+            solver.set_face_weights(*plan.regions)
         except (ValueError, TypeError) as exc:
             raise _solver_error(exc) from exc
         self.solver = solver
@@ -186,6 +191,7 @@ class Session:
         self.pins_setup = None         # a PinsSetup running or not yet looked at
         # Counts the Pin Group changes sent to the solver: handles.Handles built before one are stale.
         self.pin_changes = 0
+        self._mode = self.obj.mode  # the object's mode at the last tick: a return from Weight Paint re-reads weights
         self._pin_group_before = None  # applied["pin_group"] before it
         self.target.prepare()  # first change to the object: everything above succeeded
 
@@ -205,7 +211,7 @@ class Session:
             return problem
         settings = self.obj.gauss_stylization
         wanted = to_dict(settings)
-        changed = changes(schema.OBJECT, self.applied, wanted)
+        changed = changes(schema.OBJECT, self.applied, wanted) | self._repainted(settings)
         if changed or self._group_deleted():
             try:
                 check_settings(self.obj, settings, self.weights)
@@ -216,6 +222,41 @@ class Session:
                 return "The solver rejected a setting: %s" % exc
         self.applied = wanted
         return None
+
+    @property
+    def painting(self):
+        """Is the object in Weight Paint mode? A live run holds it still meanwhile, so that strokes
+        land where the artist sees the surface; they are read when it leaves (_repainted)."""
+        return self._mode == 'WEIGHT_PAINT'
+
+    def _repainted(self, settings):
+        """What Weight Paint strokes changed, once the artist has left Weight Paint mode: {Live.REGIONS}
+        if a Region's weights changed, with Live.PINS if the Pin Group's pinned vertices did (self.weights
+        then holds the new weights); else an empty set. Blender signals no change of vertex-group
+        weights, and reading them walks every vertex in Python, so they are read once per return from
+        Weight Paint, not per stroke. A mesh whose modifiers change its topology (Use Modifiers) keeps
+        the weights read at the start."""
+        mode = self.obj.mode
+        left = self._mode == 'WEIGHT_PAINT' and mode != 'WEIGHT_PAINT'
+        self._mode = mode
+        if not left or not self.plan.source.same_topology:
+            return set()
+        fresh = mesh_io.read_group_weights(self.obj)
+        old, self.weights = self.weights, fresh
+
+        def differs(group):
+            if not group:
+                return False
+            before, now = old.get(group), fresh.get(group)
+            return before is None or now is None or not np.array_equal(before, now)
+        found = set()
+        if any(differs(slot.vertex_group) for slot in settings.styles):
+            found.add(Live.REGIONS)
+        pin_group = settings.pin_group
+        if differs(pin_group) and not np.array_equal(styles.pinned_vertices(old, pin_group),
+                                                     styles.pinned_vertices(fresh, pin_group)):
+            found.add(Live.PINS)
+        return found
 
     def _group_deleted(self):
         """Is a vertex group the applied settings use gone from the object? (A few name look-ups.)"""
@@ -230,7 +271,7 @@ class Session:
         if Live.STYLES in changed:
             new_styles = styles.make_styles(self.gauss_core, settings.styles)
         if Live.REGIONS in changed:
-            faces = self.plan.face_styles_for(settings)
+            faces = self.plan.regions_for(settings, self.weights)
         if Live.PINS in changed:
             pins = styles.pinned_vertices(self.weights, settings.pin_group)
             check_pins(self.obj, pins, self.arrays.triangles)
@@ -246,7 +287,7 @@ class Session:
             solver.set_styles(new_styles)
             new_styles = None
         if faces is not None:
-            solver.set_face_styles(faces)
+            solver.set_face_weights(*faces)
         if new_styles is not None:
             solver.set_styles(new_styles)
         if pins is None:

@@ -23,7 +23,7 @@ class Live(enum.Enum):
     """What a change during a live run needs before the next solver step."""
     NOTHING = "nothing"             # the running solver does not read it (names, UI state, the next run)
     STYLES = "rebuild styles"       # new gauss_core.Style objects (set_styles); no re-factorization
-    REGIONS = "reassign regions"    # new face -> style indices (set_face_styles); no re-factorization
+    REGIONS = "reassign regions"    # new face and vertex weights per style (set_face_weights); no re-factorization
     PINS = "re-factor"              # set_pins(): the only change that re-factors the system
     SETTER = "solver setter"        # solver.<name> = value; also the Solver() keyword of that name
 

@@ -18,7 +18,7 @@ from .fields import (
 
 FACTS = native.facts()
 CUSTOM = 'CUSTOM'
-REGION_THRESHOLD = 0.5  # a face is in a slot's region when its vertex weights average above this
+REGION_THRESHOLD = 0.5  # styles.face_styles (one style per face): a face is in a region above this mean weight
 PIN_THRESHOLD = 0.5     # a vertex is pinned when its pin-group weight is above this
 # A scripted run of 0 steps runs until converged; it stops after this many steps if it has not by then
 # (a mesh that keeps changing, a Tolerance below what the shape reaches), so a script always ends.
@@ -126,8 +126,11 @@ SLOT = (
     # shown only where it acts.
     Float("axis_contribution", "Axis Contribution", "Weight of the axis normals for presets that have them",
           live=Live.STYLES, panel=Panel.SLOT, text="Axis Weight", relevant=_not_custom, shown=_has_rings),
-    VertexGroup("vertex_group", "Vertex Group", "Region of this style (faces whose vertex weights average "
-                "above %g); empty means the whole mesh" % REGION_THRESHOLD,
+    VertexGroup("vertex_group", "Vertex Group", "Region of this style: its weights scale the style's strength "
+                "(a face takes the mean of its vertices' weights; 0 leaves it to the other styles; where Regions "
+                "overlap, their weighted strengths add up). Paint them in Weight Paint mode: a live run picks "
+                "up the strokes when you return to Object Mode. Empty means the whole mesh, less what the "
+                "other styles' Regions take",
                 live=Live.REGIONS, panel=Panel.SLOT, text="Region"),
     Normals("custom_normals", "Custom Normals", "GaussNormal", live=Live.STYLES, panel=Panel.SLOT,
             relevant=_is_custom),
@@ -171,8 +174,10 @@ OBJECT = (
     VertexGroup("pin_group", "Pin Group", "Vertices in this group (weight above %g) keep their position"
                 % PIN_THRESHOLD, live=Live.PINS, panel=Panel.MAIN),
     Choice("uncovered", "Uncovered Faces", "Style of the faces outside every style's vertex group",
-           (('FIRST_SLOT', "First Style", "Faces outside every style's group use the first style", 0),
-            ('UNSTYLED', "Unstyled", "Faces outside every style's group only keep their shape", 1)),
+           (('FIRST_SLOT', "First Style", "What the styles' Regions leave of a face (1 minus their weights) "
+             "goes to the first style", 0),
+            ('UNSTYLED', "Unstyled", "Faces outside every style's Region only keep their shape; a Region's "
+             "weight below 1 stylizes less", 1)),
            'FIRST_SLOT', live=Live.REGIONS, panel=Panel.STYLES, text="Other Faces"),
     Int("bake_steps", "Bake Steps", "Solver steps per frame of an animation bake (with Warm Start the "
         "first frame runs Script Steps, the others continue from the previous frame)",

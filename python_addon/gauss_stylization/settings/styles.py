@@ -54,7 +54,8 @@ def make_styles(gauss_core, slots):
 
 
 def face_styles(arrays, group_weights, slot_groups, uncovered):
-    """Style index of every solver triangle (-1 = unstyled).
+    """Style index of every solver triangle (-1 = unstyled): the assignment before Regions had
+    weights (runs use face_weights), kept for scripts.
 
     A polygon belongs to a slot's region when the weights of its vertices in
     the slot's group average above REGION_THRESHOLD; later slots win overlaps; a slot
@@ -69,6 +70,46 @@ def face_styles(arrays, group_weights, slot_groups, uncovered):
             inside = arrays.polygon_average(group_weights[group]) > REGION_THRESHOLD
             polygon_style[inside] = index
     return polygon_style[arrays.tri_polygon]
+
+
+def _slot_weights(values_of, slot_groups, uncovered, count):
+    """(count, #slots) float32: each slot's weight on ``count`` polygons or vertices.
+
+    values_of(group): the group's weights there ((count,) floats in [0, 1]). A slot with a
+    Region weighs its group's weight; where Regions overlap their weights add up. The last slot
+    without a Region (with none, and uncovered == 'FIRST_SLOT', the first slot) fills what the
+    Regions leave: 1 minus their summed weight, at least 0."""
+    weights = np.zeros((count, len(slot_groups)), np.float64)
+    filler = 0 if uncovered == 'FIRST_SLOT' and slot_groups else None
+    for index, group in enumerate(slot_groups):
+        if group:
+            weights[:, index] = values_of(group)
+        else:
+            filler = index
+    if filler is not None:
+        # float64: w + (1 - w) is exactly 1 for every float32 weight w.
+        weights[:, filler] += np.maximum(0.0, 1.0 - weights.sum(axis=1))
+    return np.clip(weights, 0.0, 1.0).astype(np.float32)
+
+
+def face_weights(arrays, group_weights, slot_groups, uncovered):
+    """(#triangles, #slots) float32: each solver triangle's weight for each slot (Solver.set_face_weights).
+
+    A polygon's weight in a slot's Region is the mean of its vertices' weights in the slot's
+    group (vertices outside the group count 0), and scales the slot's mu there: painting a Region
+    in Weight Paint mode paints its strength, 0 leaves the polygon to the other slots. Overlapping
+    Regions blend: the polygon's preference is the weight-scaled sum of its slots'. A slot without
+    a Region, or the first slot for Other Faces, takes what the Regions leave (see _slot_weights).
+    Triangles inherit their polygon's weights."""
+    polygons = _slot_weights(lambda group: arrays.polygon_average(group_weights[group]), slot_groups,
+                             uncovered, arrays.num_polygons)
+    return polygons[arrays.tri_polygon]
+
+
+def vertex_weights(group_weights, slot_groups, uncovered, num_vertices):
+    """(#V, #slots) float32: each vertex's own weight for each slot, as face_weights composes them
+    (the cubic method's strength per vertex)."""
+    return _slot_weights(lambda group: group_weights[group], slot_groups, uncovered, num_vertices)
 
 
 def pinned_vertices(group_weights, pin_group):
