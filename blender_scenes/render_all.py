@@ -28,13 +28,14 @@ import scene_handles  # noqa: E402
 import scene_keep_volume  # noqa: E402
 import scene_kit  # noqa: E402
 import scene_multistyle  # noqa: E402
+import scene_paint_strength  # noqa: E402
 import scene_pins  # noqa: E402
 import scene_sigma  # noqa: E402
 import scene_styles  # noqa: E402
 
 SCENES = (default_scene, scene_cube_stays_cube, scene_styles, scene_sigma, scene_pins,
           scene_multistyle, scene_extreme, scene_cubic_vs_gauss, scene_bake, scene_keep_volume, scene_handles,
-          scene_from_example, scene_gauss_sphere)
+          scene_from_example, scene_gauss_sphere, scene_paint_strength)
 
 
 def main():
