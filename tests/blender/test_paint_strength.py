@@ -4,6 +4,7 @@ artist returns to Object Mode."""
 
 import bpy
 import numpy as np
+import pytest
 
 import helpers
 
@@ -62,15 +63,17 @@ def test_a_weight_of_a_half_is_half_the_mu(addon):
 
 def test_weights_are_read_from_the_group_and_zero_leaves_faces_unstyled(addon):
     # Weight 0 below the equator, rising to 1 at the top: polygons whose vertices all weigh 0 have
-    # no style, the others the mean of their vertices' weights.
+    # no style; those whose corners mostly carry a weight, the mean of those corners' weights.
     obj, start = _painted_sphere(lambda co: np.clip(co[:, 2], 0.0, 1.0))
     plan = addon.run.session.Plan(obj)
     try:
         face_w, vertex_w = plan.regions
+        assert vertex_w is None  # the cubic method takes its vertices' strength from their faces
         arrays = plan.arrays
         expected = np.clip(start[:, 2], 0, 1)
-        np.testing.assert_allclose(vertex_w[:, 0], expected, atol=1e-7)
-        polygon_mean = arrays.polygon_average(expected)[arrays.tri_polygon]
+        painted = arrays.polygon_average((expected > 0).astype(float))
+        polygon_mean = np.where(painted > 0.5, arrays.polygon_average(expected) / np.maximum(painted, 1e-30),
+                                0.0)[arrays.tri_polygon]
         np.testing.assert_allclose(face_w[:, 0], polygon_mean, atol=1e-6)
         below = polygon_mean == 0
         assert below.sum() > len(below) // 3 and np.all(face_w[below] == 0)
@@ -149,3 +152,30 @@ def test_a_live_run_holds_the_object_still_while_its_weights_are_painted(addon):
         if obj.mode != 'OBJECT':
             bpy.ops.object.mode_set(mode='OBJECT')
         live.cancel()
+
+
+@pytest.mark.parametrize("uncovered", ['FIRST_SLOT', 'UNSTYLED'])
+def test_regions_of_weight_one_take_exactly_the_faces_they_took_before(addon, uncovered):
+    # Weights of 1 on part of the mesh: every triangle's weights are 1 for the slot it had before
+    # (styles.face_styles, the assignment before weights) and 0 for the others; set_face_weights
+    # steps such weights bit for bit as set_face_styles (tests/cpp/test_face_weights.cpp).
+    obj = helpers.suzanne(levels=1)
+    start = helpers.coords(obj)
+    helpers.add_group(obj, "Top", np.flatnonzero(start[:, 2] > 0.1))
+    helpers.add_group(obj, "Left", np.flatnonzero(start[:, 0] < -0.2))
+    helpers.add_slot(obj, 'CUBE')
+    helpers.add_slot(obj, 'CUBE', group="Top")
+    helpers.add_slot(obj, 'OCTAHEDRON', group="Left")
+    obj.gauss_stylization.uncovered = uncovered
+    plan = addon.run.session.Plan(obj)
+    try:
+        weights = plan.regions[0]
+        groups = [slot.vertex_group for slot in obj.gauss_stylization.styles]
+        old = addon.settings.styles.face_styles(plan.arrays, plan.weights, groups, uncovered)
+    finally:
+        plan.release()
+    overlap = (weights > 0).sum(axis=1) > 1  # where Top and Left overlap the weights now blend
+    one_hot = np.zeros_like(weights)
+    one_hot[old >= 0, old[old >= 0]] = 1.0
+    assert overlap.any() and (~overlap).sum() > len(overlap) // 2
+    np.testing.assert_array_equal(weights[~overlap], one_hot[~overlap])

@@ -111,12 +111,12 @@ class Plan:
         self.source.release()
 
     def regions_for(self, settings, weights=None):
-        """(face weights, vertex weights) of the slots' Regions, from ``weights`` (default: the
-        group weights read at the start)."""
+        """(face weights, None) of the slots' Regions, from ``weights`` (default: the group weights
+        read at the start): Solver.set_face_weights' arguments (no vertex weights: the cubic method
+        takes a vertex's strength from its faces, see styles.face_weights)."""
         weights = self.weights if weights is None else weights
         groups = [slot.vertex_group for slot in settings.styles]
-        return (styles.face_weights(self.arrays, weights, groups, settings.uncovered),
-                styles.vertex_weights(weights, groups, settings.uncovered, self.arrays.num_vertices))
+        return styles.face_weights(self.arrays, weights, groups, settings.uncovered), None
 
     @property
     def num_vertices(self):

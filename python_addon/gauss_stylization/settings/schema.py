@@ -127,7 +127,7 @@ SLOT = (
     Float("axis_contribution", "Axis Contribution", "Weight of the axis normals for presets that have them",
           live=Live.STYLES, panel=Panel.SLOT, text="Axis Weight", relevant=_not_custom, shown=_has_rings),
     VertexGroup("vertex_group", "Vertex Group", "Region of this style: its weights scale the style's strength "
-                "(a face takes the mean of its vertices' weights; 0 leaves it to the other styles; where Regions "
+                "(a face whose corners mostly carry a weight takes their mean; 0 leaves it to the other styles; where Regions "
                 "overlap, their weighted strengths add up). Paint them in Weight Paint mode: a live run picks "
                 "up the strokes when you return to Object Mode. Empty means the whole mesh, less what the "
                 "other styles' Regions take",

@@ -92,24 +92,30 @@ def _slot_weights(values_of, slot_groups, uncovered, count):
     return np.clip(weights, 0.0, 1.0).astype(np.float32)
 
 
+def region_strength(arrays, vertex_weights):
+    """(#polygons,) floats in [0, 1]: a Region's strength on each polygon, from its group's vertex
+    weights (0 outside the group). A polygon is in the Region when more than REGION_THRESHOLD of its
+    corners carry a weight (the rule Regions always had: with weights of 1 exactly the polygons they
+    took before), and its strength is the mean weight of those corners: painting a Region paints its
+    strength, and a Region of weights 1 stylizes exactly as before, its edge as crisp."""
+    painted = arrays.polygon_average((vertex_weights > 0).astype(np.float64))
+    total = arrays.polygon_average(vertex_weights)
+    return np.where(painted > REGION_THRESHOLD, total / np.maximum(painted, 1e-30), 0.0)
+
+
 def face_weights(arrays, group_weights, slot_groups, uncovered):
     """(#triangles, #slots) float32: each solver triangle's weight for each slot (Solver.set_face_weights).
 
-    A polygon's weight in a slot's Region is the mean of its vertices' weights in the slot's
-    group (vertices outside the group count 0), and scales the slot's mu there: painting a Region
-    in Weight Paint mode paints its strength, 0 leaves the polygon to the other slots. Overlapping
-    Regions blend: the polygon's preference is the weight-scaled sum of its slots'. A slot without
-    a Region, or the first slot for Other Faces, takes what the Regions leave (see _slot_weights).
-    Triangles inherit their polygon's weights."""
-    polygons = _slot_weights(lambda group: arrays.polygon_average(group_weights[group]), slot_groups,
+    A slot's weight on a polygon is its Region's strength there (region_strength), which scales the
+    slot's mu: painting a Region in Weight Paint mode paints its strength, 0 leaves the polygon to
+    the other slots. Overlapping Regions blend: the polygon's preference is the weight-scaled sum of
+    its slots'. A slot without a Region, or the first slot for Other Faces, takes what the Regions
+    leave (see _slot_weights). Triangles inherit their polygon's weights; the cubic method takes each
+    vertex's strength from its faces' (no vertex weights), so weights of 1 give exactly the old
+    per-vertex strengths there too."""
+    polygons = _slot_weights(lambda group: region_strength(arrays, group_weights[group]), slot_groups,
                              uncovered, arrays.num_polygons)
     return polygons[arrays.tri_polygon]
-
-
-def vertex_weights(group_weights, slot_groups, uncovered, num_vertices):
-    """(#V, #slots) float32: each vertex's own weight for each slot, as face_weights composes them
-    (the cubic method's strength per vertex)."""
-    return _slot_weights(lambda group: group_weights[group], slot_groups, uncovered, num_vertices)
 
 
 def pinned_vertices(group_weights, pin_group):
