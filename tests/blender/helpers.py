@@ -103,6 +103,19 @@ def aligned_share(obj, directions, positions=None, triangle_mask=None, degrees=1
     return _aligned_share(positions, triangles(obj)[0], directions, degrees, triangle_mask)
 
 
+def crossing_pairs(obj):
+    """Pairs of the object's triangles that cross, counted as Blender's 3D-Print toolbox counts them:
+    a BVHTree of the triangulated mesh overlapped with itself (each pair once)."""
+    from mathutils.bvhtree import BVHTree
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    bmesh.ops.triangulate(bm, faces=bm.faces[:])
+    tree = BVHTree.FromBMesh(bm)
+    pairs = {tuple(sorted(pair)) for pair in tree.overlap(tree)}
+    bm.free()
+    return len(pairs)
+
+
 def add_group(obj, name, indices, weight=1.0):
     group = obj.vertex_groups.new(name=name)
     group.add([int(i) for i in indices], weight, 'REPLACE')

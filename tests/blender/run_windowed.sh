@@ -1,5 +1,5 @@
 #!/bin/sh
-# Drive the live (modal) Stylize operator in a real Blender window under Xvfb, in eight parts
+# Drive the live (modal) Stylize operator in a real Blender window under Xvfb, in nine parts
 # (windowed_kit.py: the helpers they share):
 #   windowed_driver.py       the basics (keys, clicks, shape keys, deleting things, files)
 #   windowed_live_run.py     undo during runs, the gizmo and other clicks, several objects, messages,
@@ -11,11 +11,14 @@
 #                            and axis labels, the gpu state after draw callbacks, sidebar screenshots
 #   windowed_undo_save.py    undo, Del and saving in the middle of a run or a bake lose nothing
 #   windowed_paint_strength.py  Weight Paint strokes during a run, picked up back in Object Mode
+#   windowed_self_intersections.py  Avoid Self-Intersections ticked in the panel: a live run and a
+#                            handle drag that cross the mesh through itself without it, not with it
 #   windowed_quit.py         quitting during a run must not save undo steps 0 in the preferences
 #   tests/blender/run_windowed.sh [BUILD_DIR]
 # Prints each part's result and "windowed summary: N passed, M failed"; exits non-zero on any
 # failure, a crash or a hang. Screenshots go to BUILD_DIR/screenshots/: the sidebar panel (panel.png),
-# the Gauss sphere overlay (sphere_overlay.png) and a pin handle being dragged (handle_drag.png).
+# the Gauss sphere overlay (sphere_overlay.png), a pin handle being dragged (handle_drag.png) and a live run
+# holding vertices back (self_intersections.png).
 set -u
 HERE=$(cd "$(dirname "$0")" && pwd)
 BUILD=$(cd "${1:-$HERE/../../build}" && pwd) || { echo "windowed: no build dir"; exit 2; }
@@ -57,6 +60,7 @@ driver windowed_interactive.py windowed_interactive_result.txt
 driver windowed_panel.py windowed_panel_result.txt
 driver windowed_undo_save.py windowed_undo_save_result.txt
 driver windowed_paint_strength.py windowed_paint_strength_result.txt
+driver windowed_self_intersections.py windowed_self_intersections_result.txt
 
 # Quitting: the preferences live in a folder of their own, never the user's.
 CONFIG=$(mktemp -d)

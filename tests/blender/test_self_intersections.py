@@ -1,23 +1,11 @@
 """Avoid Self-Intersections in the add-on: the setting reaches the solver, and a stylized mesh that
 crossed itself without it does not with it, counted as Blender's 3D-Print toolbox counts
-(BVHTree.overlap of the triangulated mesh with itself; each pair comes twice, once per order)."""
+(helpers.crossing_pairs: BVHTree.overlap of the triangulated mesh with itself)."""
 import os
 
-import bmesh
 import pytest
-from mathutils.bvhtree import BVHTree
 
 import helpers
-
-
-def overlapping_pairs(obj):
-    bm = bmesh.new()
-    bm.from_mesh(obj.data)
-    bmesh.ops.triangulate(bm, faces=bm.faces[:])
-    tree = BVHTree.FromBMesh(bm)
-    pairs = {tuple(sorted(pair)) for pair in tree.overlap(tree)}
-    bm.free()
-    return len(pairs)
 
 
 @pytest.fixture
@@ -28,13 +16,13 @@ def spot():
 
 
 def test_spot_under_a_strong_cube_style_stays_clean_with_the_setting(addon, spot):
-    assert overlapping_pairs(spot) == 0
+    assert helpers.crossing_pairs(spot) == 0
     original = helpers.coords(spot)
     counts = {}
     helpers.add_slot(spot, 'CUBE')
     for avoid in (False, True):
         assert helpers.stylize(0, lam=20.0, avoid_self_intersections=avoid) == {'FINISHED'}
-        counts[avoid] = overlapping_pairs(spot)
+        counts[avoid] = helpers.crossing_pairs(spot)
         helpers.mesh_io.write_vertex_coords(spot.data, original)  # the next run starts from the input
     assert counts[False] > 0 and counts[True] == 0, counts
 
