@@ -1,16 +1,14 @@
 """Avoid Self-Intersections: a strong style can push the surface through itself (a limitation the
 paper names); with the option on the solver holds back the vertices that would cross, so the result can
 be 3D-printed. Spot, Cube style, lambda 20, 100 steps, without and with the option; the
-faces that cross another face are red, counted as Blender's 3D-Print toolbox counts them (a BVHTree of
-the mesh overlapped with itself). Without ../shared/meshes: Suzanne, whose eyes already cross her head,
+faces that cross another face are red, counted with gauss_core.self_intersections on the mesh's
+triangles (as Blender's 3D-Print toolbox counts them). Without ../shared/meshes: Suzanne, whose eyes already cross her head,
 so there every count includes crossings the input had."""
 
 import math
 import os
 import sys
 
-import bpy
-from mathutils.bvhtree import BVHTree
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import render_kit  # noqa: E402
@@ -28,11 +26,13 @@ TURN = math.radians(-70)  # each object turned about Z for the picture: the cros
 
 
 def crossing_faces(obj):
-    """(indices of the faces that cross another face, the number of crossing pairs)."""
-    mesh = obj.data
-    tree = BVHTree.FromPolygons([v.co for v in mesh.vertices], [p.vertices for p in mesh.polygons])
-    pairs = {tuple(sorted(pair)) for pair in tree.overlap(tree)}
-    return sorted({face for pair in pairs for face in pair}), len(pairs)
+    """(indices of the faces that cross another face, the number of crossing pairs), on the triangles
+    the solver sees (the mesh's loop triangles; for Spot, a triangle mesh, the same pairs as the
+    3D-Print toolbox's BVHTree count, which triangulates quads its own way)."""
+    mesh_io = scene_kit.addon.mesh_io
+    triangles, polygon_of = mesh_io.read_loop_triangles(obj.data)
+    pairs = scene_kit.addon.native.core().self_intersections(mesh_io.read_vertex_coords(obj.data), triangles)
+    return sorted({int(polygon_of[t]) for t in pairs.ravel()}), len(pairs)
 
 
 def show_crossings(obj):
