@@ -280,6 +280,8 @@ class _Recorder:
     def column(self, **_options):
         return self
 
+    row = column
+
 
 def _bake_panel_rows(addon):
     rows = []

@@ -160,6 +160,7 @@ class Int(_Number):
 class Bool(Field):
     """A checkbox. Where the solver owns the setting (its name is in native.facts().defaults), the
     default comes from the solver and must not be given here; otherwise it must be."""
+    widget = "checkbox"  # its label beside it across the row, not in the split's narrow left column
 
     def __init__(self, name, label, tooltip, default=None, **options):
         super().__init__(name, label, tooltip, **options)

@@ -51,6 +51,14 @@ def _draw_prop(layout, _obj, owner, field):
     layout.prop(owner, field.name, text=field.text or field.label)
 
 
+def _draw_checkbox(layout, _obj, owner, field):
+    # In a split column Blender puts a checkbox's label in the left column, where "Avoid
+    # Self-Intersections" is cut off at the default sidebar width; across the row it fits.
+    row = layout.row()
+    row.use_property_split = False
+    row.prop(owner, field.name, text=field.text or field.label)
+
+
 def _draw_vertex_group(layout, obj, owner, field):
     layout.prop_search(owner, field.name, obj, "vertex_groups", text=field.text or field.label)
 
@@ -70,7 +78,8 @@ def _draw_custom_normals(layout, _obj, slot, field):
         wrapped_label(layout, "Add at least one normal", 'ERROR')
 
 
-_WIDGETS = {"prop": _draw_prop, "vertex_group": _draw_vertex_group, "normals": _draw_custom_normals}
+_WIDGETS = {"prop": _draw_prop, "checkbox": _draw_checkbox, "vertex_group": _draw_vertex_group,
+            "normals": _draw_custom_normals}
 
 
 # What a label row loses to the panel's margins, a box, its icon and the sidebar's tab strip, in
