@@ -71,6 +71,13 @@ TEST(StepAllocations, StepsDoNotAllocate) {
   for (int i = 0; i < 5; ++i) s.step();
   EXPECT_EQ(g_allocations.load() - before_cubic, 0);
   EXPECT_GT(s.cubic_admm_iterations(), 0);
+  // Avoid Self-Intersections: switching it on allocates its guard; a step it checks does not (its
+  // hierarchy, task list and contact buffers are kept from step to step).
+  s.set_avoid_self_intersections(true);
+  for (int i = 0; i < 3; ++i) s.step();
+  const long before_guard = g_allocations.load();
+  for (int i = 0; i < 5; ++i) s.step();
+  EXPECT_EQ(g_allocations.load() - before_guard, 0);
 }
 
 TEST(StepAllocations, CholeskySolveDoesNotAllocate) {

@@ -31,6 +31,7 @@ FaceBvh::FaceBvh(const std::vector<std::array<int, 3>>& faces, const std::vector
     if (nodes_[node].left < 0)
       for (int i = nodes_[node].begin; i < nodes_[node].end; ++i) leaf_of_[i] = node;
   find_connected_nodes();
+  if (!nodes_.empty()) tasks_ = tasks(kTasks);
 }
 
 void FaceBvh::find_connected_nodes() {

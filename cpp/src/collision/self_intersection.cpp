@@ -149,33 +149,34 @@ bool SelfIntersectionGuard::in_contact(int f, int g, const std::vector<Vector3d>
   return triangles_closer_than(a, b, shared, kContactMargin);
 }
 
-std::vector<uint64_t> SelfIntersectionGuard::contacts(const std::vector<Vector3d>& X, bool skip_allowed) {
+const std::vector<uint64_t>& SelfIntersectionGuard::contacts(const std::vector<Vector3d>& X, bool skip_allowed) {
   bvh_.refit(X, 0.5 * kContactMargin);
   find_flat_stars(X, nullptr);
-  PairSink sink;
+  found_.clear();
   bvh_.for_overlapping_pairs([&](int f, int g) {
     if (!in_contact(f, g, X)) return;
     const uint64_t key = pair_key(f, g);
     if (skip_allowed && allowed(key, f, g, X)) return;
-    sink.add(key);
+    std::lock_guard<std::mutex> lock(found_mutex_);  // contacts are few: one lock suffices
+    found_.push_back(key);
   }, true);
-  std::sort(sink.keys.begin(), sink.keys.end());
-  return std::move(sink.keys);
+  std::sort(found_.begin(), found_.end());
+  return found_;
 }
 
-std::vector<uint64_t> SelfIntersectionGuard::contacts_of(const std::vector<int>& faces,
-                                                         const std::vector<Vector3d>& X) {
+const std::vector<uint64_t>& SelfIntersectionGuard::contacts_of(const std::vector<int>& faces,
+                                                                const std::vector<Vector3d>& X) {
   bvh_.refit_faces(faces, X, 0.5 * kContactMargin);
   find_flat_stars(X, &faces);
-  std::vector<uint64_t> keys;
+  found_.clear();
   bvh_.for_pairs_with(faces, [&](int f, int g) {
     if (!in_contact(f, g, X)) return;
     const uint64_t key = pair_key(f, g);
-    if (!allowed(key, f, g, X)) keys.push_back(key);
+    if (!allowed(key, f, g, X)) found_.push_back(key);
   });
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  return keys;
+  std::sort(found_.begin(), found_.end());
+  found_.erase(std::unique(found_.begin(), found_.end()), found_.end());
+  return found_;
 }
 
 bool SelfIntersectionGuard::allowed(uint64_t key, int f, int g, const std::vector<Vector3d>& X) const {
@@ -187,7 +188,6 @@ bool SelfIntersectionGuard::allowed(uint64_t key, int f, int g, const std::vecto
 }
 
 void SelfIntersectionGuard::start_from(const std::vector<Vector3d>& X) {
-  allowed_.clear();
   allowed_ = contacts(X, false);
   crossing_.clear();
   for (uint64_t key : allowed_) {
@@ -215,16 +215,16 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
   }
   for (int v = 0; v < nV; ++v) move_[v] = (X[v] - safe[v]) / stages;
   stage_start_ = safe;
-  std::vector<int> held_in_any;
+  held_in_any_.clear();
   for (int stage = 0; stage < stages; ++stage) {
     for (int v = 0; v < nV; ++v) X[v] = stage_start_[v] + move_[v];
     limit_stage(stage_start_, X);
     for (int v : held_)
-      if (!ever_held_[v]) ever_held_[v] = 1, held_in_any.push_back(v);
+      if (!ever_held_[v]) ever_held_[v] = 1, held_in_any_.push_back(v);
     stage_start_ = X;
   }
-  for (int v : held_in_any) ever_held_[v] = 0;
-  last_held_ = static_cast<int>(held_in_any.size());
+  for (int v : held_in_any_) ever_held_[v] = 0;
+  last_held_ = static_cast<int>(held_in_any_.size());
   return last_held_;
 }
 
@@ -236,7 +236,8 @@ void SelfIntersectionGuard::limit_stage(const std::vector<Vector3d>& safe, std::
   constexpr float kSmallestFraction = 1.0f / 8;
   constexpr int kMaxRounds = 32;
   held_.clear();
-  std::vector<uint64_t> found = contacts(X, true);
+  // found_ is refilled at the end of each round, after the round has read it.
+  const std::vector<uint64_t>& found = contacts(X, true);
   for (int round = 0; !found.empty(); ++round) {
     if (round == 0) candidate_ = X;
     if (round >= kMaxRounds) {  // every vertex back
@@ -264,7 +265,7 @@ void SelfIntersectionGuard::limit_stage(const std::vector<Vector3d>& safe, std::
     }
     std::sort(touched_.begin(), touched_.end());
     touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
-    found = contacts_of(touched_, X);  // only faces that moved can have come into contact
+    contacts_of(touched_, X);  // only faces that moved can have come into contact
   }
   last_held_ = static_cast<int>(held_.size());
   for (int v : held_) step_fraction_[v] = 1.0f;

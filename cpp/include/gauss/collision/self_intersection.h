@@ -30,6 +30,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <mutex>
 #include <vector>
 
 #include "gauss/collision/face_bvh.h"
@@ -85,15 +86,16 @@ class SelfIntersectionGuard {
   // Whether a contact of this pair at X is one the start allows.
   bool allowed(uint64_t key, int f, int g, const std::vector<Eigen::Vector3d>& X) const;
   // Pairs (f < g, as f * 2^32 + g) in contact at X, without the allowed ones if skip_allowed; sorted.
-  std::vector<uint64_t> contacts(const std::vector<Eigen::Vector3d>& X, bool skip_allowed);
+  // Into found_ (reused: a step allocates nothing once it has grown), which is returned.
+  const std::vector<uint64_t>& contacts(const std::vector<Eigen::Vector3d>& X, bool skip_allowed);
 
   // Marks flat_star_[v] for every vertex whose star covers no point twice (see above) at X: all, or
   // those of the given faces' corners.
   void find_flat_stars(const std::vector<Eigen::Vector3d>& X, const std::vector<int>* faces);
   // Whether faces f and g are in contact at X (flat_star_ up to date for their corners).
   bool in_contact(int f, int g, const std::vector<Eigen::Vector3d>& X) const;
-  // The contacts, not allowed, of the given faces with any other (sorted, each once).
-  std::vector<uint64_t> contacts_of(const std::vector<int>& faces, const std::vector<Eigen::Vector3d>& X);
+  // The contacts, not allowed, of the given faces with any other (sorted, each once), into found_.
+  const std::vector<uint64_t>& contacts_of(const std::vector<int>& faces, const std::vector<Eigen::Vector3d>& X);
 
   const MeshTopology* topo_ = nullptr;
   FaceBvh bvh_;
@@ -110,6 +112,9 @@ class SelfIntersectionGuard {
   uint32_t stamp_count_ = 0;
   std::vector<int> held_;                 // vertices with t < 1
   std::vector<int> touched_;              // faces moved in the current round
+  std::vector<uint64_t> found_;           // the last contacts() or contacts_of()
+  std::mutex found_mutex_;                // contacts() fills found_ from several threads
+  std::vector<int> held_in_any_;          // a staged limit(): vertices held in some stage
   int last_held_ = 0;
 };
 
