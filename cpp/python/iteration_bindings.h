@@ -42,7 +42,13 @@ void bind_iteration(pybind11::class_<SolverWrapper>& cls) {
         std::lock_guard<std::mutex> lock(s.mutex());
         return s.core().converged();
       }, "last_reldv < tolerance: the last step moved the mesh by less than the tolerance, and nothing\n"
-         "changed since.");
+         "changed since; False while held_back.");
+  cls.def_property_readonly("held_back", [](SolverWrapper& s) {
+        std::lock_guard<std::mutex> lock(s.mutex());
+        return s.core().held_back();
+      }, "The run stopped moving because avoid_self_intersections holds it, not because it converged: the\n"
+         "last step moved less than the tolerance, but its held vertices (held_vertices) would have moved\n"
+         "more without the guard. step_until stops here as at convergence.");
   cls.def_property("keep_volume", [](SolverWrapper& s) { return s.core().keep_volume(); },
       [](SolverWrapper& s, bool on) {
         std::lock_guard<std::mutex> lock(s.mutex());

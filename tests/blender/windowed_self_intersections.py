@@ -79,7 +79,8 @@ def ctrl_z():
 
 
 def run_until_converged(seen, shot=None, until=None):
-    """Generator: a live run started from the 3D view, watched until it converges, has done RUN_STEPS
+    """Generator: a live run started from the 3D view, watched until it is at rest (converged or held
+    back by the guard), has done RUN_STEPS
     steps or ``until()`` is true; seen["held"] = whether its status text ever said it held vertices
     back (the first time it does, the sidebar is scrolled to the Solver panel and the 3D view saved to
     ``shot`` if given)."""
@@ -94,7 +95,7 @@ def run_until_converged(seen, shot=None, until=None):
                 if shot:
                     yield from scroll_sidebar_down(30)  # the run's box above pushed the checkbox down
                     area_screenshot(os.path.join(kit.SHOTS, shot))
-            if op.session.steps >= RUN_STEPS or op.session.converged or (until and until()):
+            if op.session.steps >= RUN_STEPS or op.session.at_rest or (until and until()):
                 break
         yield 0.05
     op = live_operator()

@@ -26,6 +26,8 @@ from .targets import TITLE
 TICK_SECONDS = 0.01  # the timer of a run in the UI (a Stylize, a bake): how often it gets a tick
 TICK_BUDGET = 1.0 / 30.0  # seconds of solver steps per tick before the rest wait for the next one
 CONVERGED = "Converged"  # status bar and panel: the object is not stepped until something changes
+# At rest too, but only because Avoid Self-Intersections holds it short of where the style pulls it.
+HELD_BACK = "Held back by Avoid Self-Intersections"
 
 
 class TickOutcome:
@@ -56,7 +58,7 @@ class LiveRun:
     @property
     def converged(self):
         """The sessions a tick leaves alone because they converged (as their last sync left them)."""
-        return {s for s in self.sessions if s.converged and s.busy is None and s not in self.paused}
+        return {s for s in self.sessions if s.at_rest and s.busy is None and s not in self.paused}
 
     # -- set-up -------------------------------------------------------------------
 
@@ -106,7 +108,7 @@ class LiveRun:
                 continue
             if session.painting:  # held still while its weights are painted; read on the way back
                 continue
-            if session.converged:  # and nothing changed since: no step, no CPU
+            if session.at_rest:  # and nothing changed since: no step, no CPU
                 continue
             try:
                 session.step()
@@ -209,7 +211,7 @@ class LiveRun:
             text = TITLE + ": step %d" % sessions[0].steps
             towards = convergence_text(sessions[0].reldv, sessions[0].applied["tolerance"])
             if converged:
-                text += "  |  " + CONVERGED
+                text += "  |  " + (HELD_BACK if sessions[0].held_back else CONVERGED)
             elif towards:
                 text += "  |  " + towards
             if not converged and sessions[0].step_ms and self.tick_ms:
@@ -218,10 +220,13 @@ class LiveRun:
             steps = [session.steps for session in sessions]
             text = TITLE + ": %d objects, step %s" % (
                 len(sessions), min(steps) if min(steps) == max(steps) else "%d-%d" % (min(steps), max(steps)))
-            if len(converged) == len(sessions):
+            if len(converged) == len(sessions) and not any(s.held_back for s in converged):
                 text += "  |  " + CONVERGED + " (all)"
-            elif converged:
-                text += "  |  %s: %s" % (CONVERGED, ", ".join(sorted("'%s'" % s.name for s in converged)))
+            else:
+                for label, group in ((CONVERGED, [s for s in converged if not s.held_back]),
+                                     (HELD_BACK, [s for s in converged if s.held_back])):
+                    if group:
+                        text += "  |  %s: %s" % (label, ", ".join(sorted("'%s'" % s.name for s in group)))
             if self.tick_ms and len(converged) < len(sessions):
                 text += "  |  %.1f ms/tick" % self.tick_ms[-1]
         for session, why in self.paused.items():
@@ -245,7 +250,7 @@ class LiveRun:
         if self.preparing:
             return progress_text("Preparing", self.setup.fraction)
         if self.sessions and len(self.converged) == len(self.sessions):
-            return CONVERGED
+            return HELD_BACK if any(s.held_back for s in self.sessions) else CONVERGED
         return "Stylizing live"
 
     def panel_lines(self):
@@ -259,6 +264,8 @@ class LiveRun:
                 lines.append(("%s: %s" % (session.name, progress_text(busy.text(), busy.fraction)), 'TIME'))
             elif session in self.paused:
                 lines.append(("%s: paused" % session.name, 'PAUSE'))
+            elif session in self.converged and session.held_back:
+                lines.append(("%s: %s, step %d" % (session.name, HELD_BACK, session.steps), 'ERROR'))
             elif session in self.converged:
                 lines.append(("%s: converged, step %d" % (session.name, session.steps), 'CHECKMARK'))
             else:

@@ -325,6 +325,16 @@ class Session:
         return self.solver.converged
 
     @property
+    def held_back(self):
+        """Did the run stop moving only because Avoid Self-Intersections holds it (not converged)?"""
+        return self.solver.held_back
+
+    @property
+    def at_rest(self):
+        """Converged or held back: another step would not move the mesh, until something changes."""
+        return self.solver.converged or self.solver.held_back
+
+    @property
     def reldv(self):
         """The last step's relative change (inf before the first step and after a change)."""
         return self.solver.last_reldv
