@@ -45,3 +45,58 @@ def test_a_live_run_says_when_it_holds_vertices_back(addon):
         held = max(held, run.solver.held_vertices)
     run.cancel()
     assert held > 0  # Suzanne's eyes touch her head: the guard has work to do
+
+
+def _two_spheres_with_a_cap(addon):
+    """Two UV spheres 0.3 apart in one object, Pin Group 'Cap' on the first's side facing the second,
+    and pin targets that push that cap 1.0 into the second (as a handle dragged there would)."""
+    import bmesh
+    import bpy
+    from mathutils import Matrix, Vector
+    bm = bmesh.new()
+    for x in (0.0, 2.3):
+        bmesh.ops.create_uvsphere(bm, u_segments=24, v_segments=12, radius=1.0,
+                                  matrix=Matrix.Translation((x, 0.07, 0.03)))
+    bmesh.ops.triangulate(bm, faces=bm.faces[:])  # the solver's triangles are the ones counted
+    obj = helpers.object_from_bmesh(bm, "Spheres")
+    cap = [v.index for v in obj.data.vertices if 0.8 < v.co.x < 1.2]  # the first sphere's side
+    helpers.add_group(obj, "Cap", cap)
+    obj.gauss_stylization.pin_group = "Cap"
+    obj.gauss_stylization.lam = 0.0
+    targets = [list(obj.data.vertices[i].co + Vector((1.0, 0, 0))) for i in cap]
+    bpy.context.view_layer.objects.active = obj
+    return obj, targets
+
+
+def test_a_run_the_guard_stops_says_held_back_and_not_converged(addon):
+    # The pinned cap pushed into the other sphere: without the guard it passes through and the run
+    # converges; with it the run comes to rest short of it, and says the guard holds it, never
+    # "Converged" (it used to report Converged while the guard was what stopped it).
+    obj, targets = _two_spheres_with_a_cap(addon)
+    helpers.add_slot(obj, 'CUBE')
+    original = helpers.coords(obj)
+    for avoid in (False, True):
+        obj.gauss_stylization.avoid_self_intersections = avoid
+        live = helpers.live_run([obj])
+        session = live.sessions[0]
+        session.solver.set_pin_positions(targets)
+        for _ in range(600):
+            live.tick(budget=1e9)
+            if live.converged:
+                break
+        assert live.converged == {session}, "never came to rest"
+        text = live.status_text()
+        if avoid:
+            assert session.held_back and not session.converged
+            assert "Held back by Avoid Self-Intersections" in text and "Converged" not in text, text
+            assert live.panel_title() == "Held back by Avoid Self-Intersections"
+            assert helpers.crossing_pairs(obj) == 0
+        else:
+            assert session.converged and not session.held_back
+            assert "Converged" in text and "Held back" not in text, text
+            assert helpers.crossing_pairs(obj) > 0
+        steps = session.steps
+        live.tick(budget=1e9)  # at rest: a tick does not step it
+        assert session.steps == steps
+        live.cancel()
+        assert helpers.coords(obj).tolist() == original.tolist()
