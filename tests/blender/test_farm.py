@@ -137,6 +137,44 @@ def test_the_script_runs_from_a_classic_add_on_install(addon, tmp_path):
     assert addon.pc2.read(str(tmp_path / "c.pc2")).frames.shape[0] == 3
 
 
+_MANIFEST = """schema_version = "1.0.0"
+id = "gauss_stylization"
+version = "0.1.0"
+name = "Gauss Stylization"
+tagline = "Stylize meshes by the face normals they should prefer"
+maintainer = "tests"
+type = "add-on"
+blender_version_min = "4.2.0"
+license = ["SPDX:GPL-3.0-or-later"]
+"""
+
+
+@pytest.mark.skipif(bpy.app.version < (4, 2, 0), reason="Blender %s has no extensions (4.2 and later)"
+                    % bpy.app.version_string)
+def test_the_script_runs_from_an_extension_install(addon, tmp_path):
+    _shot(warm_start=False, frames=(1, 3))
+    blend = tmp_path / "shot.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(blend))
+    if os.path.basename(helpers.ADDON_DIR) == "user_default":  # the suite runs on an installed extension
+        installed, env = os.path.join(helpers.ADDON_DIR, "gauss_stylization"), None
+    else:  # the build's add-on (the solver inside it) as an extension of a throw-away user folder
+        user = tmp_path / "user"
+        installed = str(user / "extensions" / "user_default" / "gauss_stylization")
+        shutil.copytree(os.path.join(helpers.ADDON_DIR, "gauss_stylization"), installed,
+                        ignore=shutil.ignore_patterns("__pycache__"))
+        with open(os.path.join(installed, "blender_manifest.toml"), "w") as handle:
+            handle.write(_MANIFEST)
+        env = dict(os.environ, BLENDER_USER_RESOURCES=str(user), BLENDER_USER_CONFIG=str(user / "config"),
+                   BLENDER_USER_SCRIPTS=str(user / "scripts"), BLENDER_USER_DATAFILES=str(user / "datafiles"))
+    result = _run_script(os.path.join(installed, "bake", "farm_cli.py"),
+                         ["bake", "--object", "Capsule", "--frames", "1-3", "--out", tmp_path / "c.pc2"], blend, env)
+    assert result.returncode == 0, result.stdout + result.stderr
+    # The package Blender knows: bl_ext.<repository>.<name>, not a second copy imported from the folder.
+    assert re.search(r"gauss_bake: add-on 'bl_ext\.user_default\.gauss_stylization' (loaded|enabled) from %s"
+                     % re.escape(os.path.realpath(installed)), result.stdout), result.stdout
+    assert addon.pc2.read(str(tmp_path / "c.pc2")).frames.shape[0] == 3
+
+
 @pytest.mark.parametrize("args, message", [
     (["bake", "--object", "Nobody", "--frames", "1-3"], "No object 'Nobody'"),
     (["bake", "--object", "Rig", "--frames", "1-3"], "'Rig' is not a mesh object (its type is ARMATURE)"),
