@@ -32,12 +32,12 @@ sys.path.insert(0, str(HERE))
 from slurm_cluster import Cluster  # noqa: E402
 
 
-def run(argv, **options):
+def run(argv, ok=(0,), **options):
     start = time.perf_counter()
     result = subprocess.run([str(a) for a in argv], capture_output=True, text=True, stdin=subprocess.DEVNULL,
                             **options)
     wall = time.perf_counter() - start
-    if result.returncode not in options.pop("ok", (0,)):
+    if result.returncode not in ok:
         sys.exit("%s failed (%d):\n%s\n%s" % (argv, result.returncode, result.stdout[-3000:], result.stderr[-3000:]))
     return result, wall
 
