@@ -190,7 +190,7 @@ class Cluster:
                     break
                 time.sleep(0.5)
         for name in reversed(DAEMONS):
-            process = self.processes.pop(name, None)
+            process = self.processes.get(name)
             if process is None or process.poll() is not None:
                 continue
             process.send_signal(signal.SIGTERM)
@@ -201,6 +201,7 @@ class Cluster:
                 process.wait()
 
     def running(self):
+        """The daemons this cluster started that are still running."""
         return [name for name, process in self.processes.items() if process.poll() is None]
 
     def __enter__(self):

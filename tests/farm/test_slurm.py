@@ -61,3 +61,20 @@ def test_a_slurm_array_bake_merged_is_the_one_process_bake(shot, one_bake, tmp_p
     assert cluster.running() == []
     for mark in (str(cluster.conf), cluster.socket):  # slurmctld and slurmd name the first, munged the second
         assert subprocess.run(["pgrep", "-f", mark], capture_output=True).stdout == b""
+
+
+def test_a_cluster_that_cannot_start_fails_with_the_reason_and_leaves_no_daemon(tmp_path, monkeypatch):
+    write_conf = Cluster._write_conf
+
+    def broken_conf(cluster):
+        write_conf(cluster)
+        with open(cluster.conf, "a") as handle:
+            handle.write("NoSuchSlurmOption=1\n")
+
+    monkeypatch.setattr(Cluster, "_write_conf", broken_conf)
+    cluster = Cluster(tmp_path / "slurm")
+    with pytest.raises(ClusterError, match="slurmctld exited with status") as error:
+        cluster.start()
+    assert "NoSuchSlurmOption" in str(error.value)  # the daemon's own words
+    assert cluster.running() == []  # munged and slurmd, started before slurmctld gave up, were stopped
+    assert subprocess.run(["pgrep", "-f", cluster.socket], capture_output=True).stdout == b""
