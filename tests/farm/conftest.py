@@ -4,6 +4,8 @@ Flamenco) baking a shot in chunks through the add-on's bake/farm_cli.py, compare
 Needs Debian's `blender`, the build's staged add-on (GAUSS_BUILD_DIR, default <repo>/build), and per
 engine: slurm-wlm and munge (run as root), openjd-cli in the tools venv, node
 (scripts/install_deps.sh installs them all). A missing one fails its test: nothing is skipped.
+Run them with /usr/bin/python3 (scripts/run_tests.sh does): a Blender started from pyenv's python3
+takes pyenv's Python library path and no longer finds Debian's numpy.
 """
 
 import os
