@@ -303,7 +303,7 @@ def test_the_bake_panel_offers_its_settings_and_both_bakes(addon, tmp_path):
         "bake_steps", "bake_warm_start", "bake_warmup_frames", "bake_scene_range", "bake_filepath",
         "object.gauss_bake_animation", "object.gauss_bake_progress"]
     assert _shows(rows, "Frames 1 to 10 (the scene's)")
-    obj.gauss_stylization.bake_warm_start = False  # Farm Warm-up only matters with Warm Start
+    obj.gauss_stylization.bake_warm_start = False  # Warm-up only matters with Warm Start
     assert "bake_warmup_frames" not in _bake_panel_rows(addon)
     obj.gauss_stylization.bake_warm_start = True
     obj.gauss_stylization.bake_scene_range = False

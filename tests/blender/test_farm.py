@@ -18,7 +18,7 @@ import rig
 from blender_process import blender_command
 
 # Warm Start chunks: largest vertex distance from the one-process bake, over the capsule's size, that a
-# chunk with the default Farm Warm-up may show on this shot (docs/baking.md, "Warm Start in chunks").
+# chunk with the default Warm-up may show on this shot (docs/baking.md, "Warm Start in chunks").
 WARM_TOLERANCE = 0.02
 
 

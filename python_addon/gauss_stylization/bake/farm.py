@@ -52,7 +52,7 @@ def mesh_object(name):
 
 
 def warmup_frames(scene, settings, first):
-    """Frames a chunk starting at ``first`` bakes before it: the object's Farm Warm-up with Warm Start
+    """Frames a chunk starting at ``first`` bakes before it: the object's Warm-up with Warm Start
     (none without), but none before the shot's first frame, where one bake starts cold too."""
     if not settings.bake_warm_start:
         return 0

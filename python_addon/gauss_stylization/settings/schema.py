@@ -189,7 +189,7 @@ OBJECT = (
     Bool("bake_warm_start", "Warm Start", "Bake Animation starts each frame from the previous frame's result "
          "(steady style, no flicker). Off: every frame is stylized on its own, so frame ranges baked apart "
          "(render farm) give the same frames", default=True, panel=Panel.BAKE),
-    Int("bake_warmup_frames", "Farm Warm-up", "With Warm Start, frames a farm chunk (bake/farm_cli.py) bakes "
+    Int("bake_warmup_frames", "Warm-up", "With Warm Start, frames a farm chunk (bake/farm_cli.py) bakes "
         "before its first frame without writing them, so that frame continues a run as in one bake; more: "
         "closer to one bake, slower chunks", default=8, hard=(0, 100000), soft=(0, 50), panel=Panel.BAKE,
         shown=_warm_start),
