@@ -3,6 +3,7 @@
 #   bash scripts/run_tests.sh          everything (the README's test command, and CI's): C++ (ctest), the
 #                                      Python module (pytest, also against numpy 2), the Blender add-on
 #                                      headless and in a real window (xvfb, Debian's Blender 3.4.1), the
+#                                      farm engines (a single-node Slurm, openjd-cli, Flamenco's job type), the
 #                                      headless suite in every Blender release PyPI serves as a bpy wheel,
 #                                      the Windows/macOS cross check, the C++ tests under ASan+UBSan, a
 #                                      bounded fuzzing run
@@ -47,6 +48,8 @@ run_part "Blender add-on, headless" \
 if [ $fast -eq 0 ]; then
   run_part "Python module against numpy 2 (Python 3.11, 3.13)" bash scripts/test_numpy2.sh
   run_part "Blender add-on, real window (xvfb)" bash tests/blender/run_windowed.sh "$PWD/build"
+  run_part "Farm engines: Slurm, Open Job Description, Flamenco" \
+    env GAUSS_BUILD_DIR="$PWD/build" /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/farm
   run_part "Blender add-on in every bpy release (4.2 to 5.3)" bash scripts/test_blender_versions.sh
   run_part "Windows and macOS cross check (MinGW + wine, zig)" bash scripts/cross_check.sh
   run_part "C++ tests under ASan+UBSan" bash scripts/run_sanitizers.sh build-asan

@@ -28,7 +28,7 @@ MODULES = (
     "handles.handles", "handles.handle_tool",
     "sphere.gauss_sphere", "sphere.directions", "sphere.orientation", "sphere.surface", "sphere.sphere_overlay",
     "sphere.sphere_editing", "sphere.style_from_data",
-    "bake.pc2", "bake.bake", "bake.bake_operators", "bake.bake_ui",
+    "bake.pc2", "bake.bake", "bake.bake_operators", "bake.bake_ui", "bake.farm", "bake.batch", "bake.farm_cli",
     "operators", "slot_operators", "ui",
 )
 
@@ -71,9 +71,11 @@ def register():
     sphere.sphere_overlay.register()
     sphere.sphere_editing.register()
     handles.handle_tool.register()
+    bake.farm_cli.register()
 
 
 def unregister():
+    bake.farm_cli.unregister()
     run.runs.unregister_handlers()
     run.runs.stop_all(bpy.context)  # first: a run's end is told to the event handlers below (on_end)
     handles.handle_tool.unregister()

@@ -81,6 +81,10 @@ def _not_custom(slot):
 MAX_FRAME = 1048574  # Blender's MAXFRAME: frames range over +-this
 
 
+def _warm_start(settings):
+    return settings.bake_warm_start
+
+
 def _own_bake_range(settings):
     return not settings.bake_scene_range
 
@@ -185,6 +189,10 @@ OBJECT = (
     Bool("bake_warm_start", "Warm Start", "Bake Animation starts each frame from the previous frame's result "
          "(steady style, no flicker). Off: every frame is stylized on its own, so frame ranges baked apart "
          "(render farm) give the same frames", default=True, panel=Panel.BAKE),
+    Int("bake_warmup_frames", "Warm-up", "With Warm Start, frames a farm chunk (bake/farm_cli.py) bakes "
+        "before its first frame without writing them, so that frame continues a run as in one bake; more: "
+        "closer to one bake, slower chunks", default=8, hard=(0, 100000), soft=(0, 50), panel=Panel.BAKE,
+        shown=_warm_start),
     Bool("bake_scene_range", "Scene Range", "Bake Animation bakes the scene's frame range (Frame Start to End); "
          "off: the Start and End below", default=True, panel=Panel.BAKE),
     Int("bake_frame_start", "Start", "First frame Bake Animation bakes", default=1,
