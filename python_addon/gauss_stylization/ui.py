@@ -1,6 +1,7 @@
 """Sidebar panels (3D view > Sidebar > Gauss) and the style-slot lists."""
 
 import bpy
+from bpy.props import StringProperty
 
 from . import native, operators
 from .errors import NativeModuleError
@@ -25,6 +26,12 @@ class GAUSS_UL_styles(bpy.types.UIList):
             split.label(text="All", icon='MESH_DATA')
 
 
+def normal_text(vector):
+    """"-0.79  -0.19  0.58": one label, so that its numbers cannot run together (in three labels of a
+    third of the row each, a minus sign filled the gap before it)."""
+    return "  ".join("%.2f" % value for value in vector)
+
+
 class GAUSS_UL_normals(bpy.types.UIList):
     """Custom normals, one row each: its number, then X Y Z to two decimals (number fields would be
     too narrow to read in the sidebar). The active one is edited under the list and highlighted on
@@ -33,9 +40,7 @@ class GAUSS_UL_normals(bpy.types.UIList):
     def draw_item(self, context, layout, data, item, icon, active_data, active_propname, index):
         split = layout.split(factor=0.16)
         split.label(text="%d" % (index + 1))
-        row = split.row(align=True)
-        for value in item.vector:
-            row.label(text="%.2f" % value)
+        split.label(text=normal_text(item.vector))
 
 
 class VIEW3D_PT_gauss_stylization(GaussPanel, bpy.types.Panel):
@@ -99,14 +104,36 @@ class VIEW3D_PT_gauss_styles(GaussSubPanel, bpy.types.Panel):
             draw_rows(col, obj, slot, schema.SLOT, Panel.SLOT)
 
 
+class OBJECT_OT_gauss_run_details(bpy.types.Operator):
+    """A row of the live run's box whose numbers are in its tooltip ("settling, 80%": how far the last
+    step moved the mesh, against the Tolerance); a click writes them to the Info log"""
+    bl_idname = "object.gauss_run_details"
+    bl_label = "Run Details"
+    bl_options = {'INTERNAL'}  # not registered: a live run counts registered operators as edits
+
+    details: StringProperty(options={'HIDDEN', 'SKIP_SAVE'})
+
+    @classmethod
+    def description(cls, context, properties):
+        return properties.details
+
+    def execute(self, context):
+        self.report({'INFO'}, self.details)
+        return {'FINISHED'}
+
+
 def _draw_run_state(layout, run):
     """What a live run (a Stylize, or a bake: bake_operators.py) does: its objects and how far
-    they are, and the keys that end it."""
+    they are, and the keys that end it. A row with details shows them as its tooltip."""
     title, lines, hints = run.panel_state()
     box = layout.box().column(align=True)
     box.label(text=title, icon='TIME')
-    for text, icon in lines:
-        wrapped_label(box, text, icon)
+    for text, icon, *details in lines:
+        if details:
+            box.operator(OBJECT_OT_gauss_run_details.bl_idname, text=text, icon=icon,
+                         emboss=False).details = details[0]
+        else:
+            wrapped_label(box, text, icon)
     for hint in hints:
         wrapped_label(box, hint)
 
@@ -118,7 +145,9 @@ class VIEW3D_PT_gauss_solver(GaussSubPanel, bpy.types.Panel):
     def draw(self, context):
         obj = mesh_object(context)
         draw_rows(split_column(self.layout), obj, obj.gauss_stylization, schema.OBJECT, Panel.SOLVER)
+        # Next to Avoid Self-Intersections: check a result (or an input) for a print, with it or without.
+        self.layout.operator("object.gauss_select_intersections", icon='SELECT_INTERSECT')
 
 
-classes = (GAUSS_UL_styles, GAUSS_UL_normals,
+classes = (OBJECT_OT_gauss_run_details, GAUSS_UL_styles, GAUSS_UL_normals,
            VIEW3D_PT_gauss_stylization, VIEW3D_PT_gauss_styles, VIEW3D_PT_gauss_solver)
