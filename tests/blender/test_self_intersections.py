@@ -3,6 +3,9 @@ crossed itself without it does not with it, counted as Blender's 3D-Print toolbo
 (helpers.crossing_pairs: BVHTree.overlap of the triangulated mesh with itself)."""
 import os
 
+import bmesh
+import bpy
+import numpy as np
 import pytest
 
 import helpers
@@ -45,3 +48,112 @@ def test_a_live_run_says_when_it_holds_vertices_back(addon):
         held = max(held, run.solver.held_vertices)
     run.cancel()
     assert held > 0  # Suzanne's eyes touch her head: the guard has work to do
+
+
+class _GuardStopped:
+    """A solver that reads as a run the guard stopped: converged, with ``held`` vertices held back in
+    its last step (``held_back`` too: the read-out the solver is getting)."""
+
+    def __init__(self, solver, held, converged=True):
+        self._solver, self.held_vertices, self.converged = solver, held, converged
+        self.held_back = converged and held > 0
+
+    def __getattr__(self, name):
+        return getattr(self._solver, name)
+
+
+def test_a_run_the_guard_stopped_says_held_back_and_not_converged(addon):
+    obj = helpers.suzanne(levels=0)
+    helpers.add_slot(obj, 'CUBE')
+    obj.gauss_stylization.avoid_self_intersections = True
+    live = helpers.live_run([obj])
+    session = live.sessions[0]
+    solver = session.solver
+    try:
+        live.tick(budget=0.0)
+        session.solver = _GuardStopped(solver, 7)
+        text = live.status_text()
+        assert addon.run.live_run.held_back(session)
+        assert "held back by Avoid Self-Intersections at 7 vertices" in text and "Converged" not in text, text
+        assert live.panel_title() == "Held back"
+        assert any("held back" in line[0] and line[1] == 'ERROR' for line in live.panel_lines())
+        session.solver = _GuardStopped(solver, 7, converged=False)  # held somewhere, still settling
+        assert not addon.run.live_run.held_back(session) and "settling" in live.status_text()
+    finally:
+        session.solver = solver
+        live.cancel()
+
+
+def _overlapping_polygons(obj):
+    """Polygons of ``obj`` that cross another, by Blender's own BVHTree (as the 3D-Print toolbox)."""
+    from mathutils.bvhtree import BVHTree
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    tree = BVHTree.FromBMesh(bm)
+    found = {index for pair in tree.overlap(tree) for index in pair}
+    bm.free()
+    return found
+
+
+def _the_same_as_blender_finds(obj, selected):
+    """Does ``selected`` hold every polygon Blender's overlap finds, and besides those only polygons
+    that cross a neighbour around a shared corner (a folded fan: Blender's overlap of a mesh with
+    itself leaves out pairs that share a vertex; they cross all the same)?"""
+    faces = _overlapping_polygons(obj)
+    found = addon_crossings(obj)
+    shared = all(set(obj.data.polygons[int(a)].vertices) & set(obj.data.polygons[int(b)].vertices)
+                 for a, b in found.polygon_pairs if not {a, b} <= faces)
+    return faces <= selected and shared and selected == set(found.polygons.tolist())
+
+
+def addon_crossings(obj):
+    import gauss_stylization
+    return gauss_stylization.mesh.crossings.find(gauss_stylization.native.core(), obj,
+                                                 bpy.context.evaluated_depsgraph_get())
+
+
+def _selected_polygons(obj):
+    chosen = np.zeros(len(obj.data.polygons), bool)
+    obj.data.polygons.foreach_get("select", chosen)
+    return set(np.flatnonzero(chosen).tolist())
+
+
+def test_select_crossing_faces_selects_what_the_3d_print_toolbox_finds(addon, spot):
+    """Spot stylized without the guard crosses itself: the operator selects those faces and says how
+    many pairs, in Object Mode and in Edit Mode; with the guard, none."""
+    helpers.add_slot(spot, 'CUBE')
+    original = helpers.coords(spot)
+    assert helpers.stylize(0, lam=20.0) == {'FINISHED'}
+    assert helpers.crossing_pairs(spot) > 0
+    assert bpy.ops.object.gauss_select_intersections() == {'FINISHED'}
+    assert _the_same_as_blender_finds(spot, _selected_polygons(spot))
+    found = addon_crossings(spot)
+    reported = addon.crossing_operators.said(found)
+    assert reported.startswith("%d pairs of faces cross" % len(found.pairs)), reported
+    faces = _selected_polygons(spot)
+
+    bpy.ops.object.mode_set(mode='EDIT')
+    bpy.ops.mesh.select_all(action='SELECT')
+    assert bpy.ops.object.gauss_select_intersections() == {'FINISHED'}
+    edit = bmesh.from_edit_mesh(spot.data)
+    assert {face.index for face in edit.faces if face.select} == faces
+    bpy.ops.object.mode_set(mode='OBJECT')
+
+    helpers.mesh_io.write_vertex_coords(spot.data, original)
+    spot.data.update()
+    assert helpers.stylize(0, lam=20.0, avoid_self_intersections=True) == {'FINISHED'}
+    assert bpy.ops.object.gauss_select_intersections() == {'FINISHED'}
+    assert _selected_polygons(spot) == set()
+
+
+def test_select_crossing_faces_maps_triangles_back_to_polygons(addon):
+    """Suzanne's quads: her eyes cross her head; the polygons selected are those Blender finds."""
+    obj = helpers.activate(helpers.suzanne(levels=0))
+    faces = _overlapping_polygons(obj)
+    assert faces and any(len(obj.data.polygons[i].vertices) == 4 for i in faces)
+    assert bpy.ops.object.gauss_select_intersections() == {'FINISHED'}
+    assert _the_same_as_blender_finds(obj, _selected_polygons(obj))
+    faces = _selected_polygons(obj)
+    selected_vertices = np.zeros(len(obj.data.vertices), bool)
+    obj.data.vertices.foreach_get("select", selected_vertices)
+    assert set(np.flatnonzero(selected_vertices)) == {v for i in faces for v in obj.data.polygons[i].vertices}
