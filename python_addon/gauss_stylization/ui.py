@@ -10,20 +10,35 @@ from .run import runs
 from .run.targets import stylize_objects
 from .settings import schema, styles
 from .settings.fields import Panel
-from .view.sidebar import GaussPanel, GaussSubPanel, draw_rows, mesh_object, split_column, wrapped_label
+from .view.sidebar import (ICON_UNITS, GaussPanel, GaussSubPanel, draw_rows, list_row_width, mesh_object,
+                           split_column, text_width, ui_scale, wrapped_label)
+
+
+def slot_row(slot, width, measure, unit):
+    """(factor, region text) of a slot's row ``width`` pixels wide (``unit``: Blender's UI unit in
+    pixels): the name gets the row, with its Region's icon; the Region's name (its vertex group, or
+    "All": the whole mesh) too where both fit (factor: the name's share of the row), else (None, None).
+    In two halves of the default sidebar, "Stretched Cube" was cut to "Stretch..."."""
+    region = slot.vertex_group or "All"
+    name_px, region_px = measure(slot.name), measure(region)
+    spare = width - ICON_UNITS * unit - name_px - region_px
+    if spare < 2 * unit:  # each text keeps a little padding
+        return None, None
+    return (ICON_UNITS * unit + name_px + spare / 2.0) / width, region
 
 
 class GAUSS_UL_styles(bpy.types.UIList):
     """Style slots; where their Regions overlap, their weighted strengths add up."""
 
     def draw_item(self, context, layout, data, slot, icon, active_data, active_propname, index):
-        split = layout.split(factor=0.5)
-        split.prop(slot, "name", text="", emboss=False)
-        # The slot's region: its vertex group, or the whole mesh when none is set.
-        if slot.vertex_group:
-            split.label(text=slot.vertex_group, icon='GROUP_VERTEX')
-        else:
-            split.label(text="All", icon='MESH_DATA')
+        icon = 'GROUP_VERTEX' if slot.vertex_group else 'MESH_DATA'  # the slot's Region
+        factor, region = slot_row(slot, list_row_width(context), text_width, 20.0 * ui_scale(context))
+        if region is None:
+            layout.prop(slot, "name", text="", emboss=False, icon=icon)
+            return
+        split = layout.split(factor=factor)
+        split.prop(slot, "name", text="", emboss=False, icon=icon)
+        split.label(text=region)
 
 
 def normal_text(vector):

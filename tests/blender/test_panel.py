@@ -93,6 +93,23 @@ def test_a_custom_normal_is_one_row_with_its_number_and_x_y_z(addon):
     assert ("prop", "vector", "#2", -1) in draw(addon.ui.VIEW3D_PT_gauss_styles)
 
 
+def test_a_slot_name_gets_its_row_and_the_region_only_where_both_fit(addon):
+    """Issue 26: in half of the list's row, names were cut to "Stre...". At the default sidebar width a
+    long name takes the row (the Region as its icon); a short one leaves room for the Region's name."""
+    obj = helpers.activate(helpers.suzanne(levels=0))
+    helpers.add_group(obj, "Head", range(10))
+    long_name = helpers.add_slot(obj, 'CUBE', name="Stretched Cube")
+    short = helpers.add_slot(obj, 'CUBE', group="Head")
+    rows = {}
+    for slot in (long_name, short):
+        layout = Layout()
+        addon.ui.GAUSS_UL_styles.draw_item(None, bpy.context, layout, obj.gauss_stylization, slot, 'NONE',
+                                           obj.gauss_stylization, "active_style_index", 0)
+        rows[slot.name] = layout.rows
+    assert rows["Stretched Cube"] == [("prop", "name", "", -1)]
+    assert rows["Cube"] == [("prop", "name", "", -1), ("label", "Head", 'NONE')]
+
+
 def test_the_gauss_sphere_checkbox_shows_before_any_slot_and_stylize_says_what_it_adds(addon):
     obj = helpers.activate(helpers.suzanne(levels=0))
     rows = draw(addon.ui.VIEW3D_PT_gauss_styles)
