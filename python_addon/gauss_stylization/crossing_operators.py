@@ -63,7 +63,8 @@ class OBJECT_OT_gauss_select_intersections(bpy.types.Operator):
             # Edit Mode shows the selection; it would end a live run, so then it waits for the artist.
             if len(found.polygons) and not runs.is_running(obj) and context.window is not None:
                 bpy.ops.object.mode_set(mode='EDIT')
-                context.tool_settings.mesh_select_mode = (False, False, True)
+                # In vertex select mode Edit Mode would add every face whose corners are all selected.
+                self._select_in_edit_mode(context, obj, found.polygons)
         self.report({'WARNING'} if len(found.pairs) else {'INFO'}, said(found))
         return {'FINISHED'}
 
