@@ -145,7 +145,9 @@ def _draw_run_state(layout, run):
     box.label(text=title, icon='TIME')
     for text, icon, *details in lines:
         if details:
-            box.operator(OBJECT_OT_gauss_run_details.bl_idname, text=text, icon=icon,
+            row = box.row()
+            row.alignment = 'LEFT'  # as the labels around it
+            row.operator(OBJECT_OT_gauss_run_details.bl_idname, text=text, icon=icon,
                          emboss=False).details = details[0]
         else:
             wrapped_label(box, text, icon)

@@ -59,8 +59,8 @@ def settling_text(fraction):
 
 def settling_details(change, tolerance):
     """The numbers behind "settling": the tooltip of the sidebar's progress row."""
-    return ("The last step moved the mesh by %s of how far it has come; it has converged (and stops) once "
-            "a step moves it by less than %s (Tolerance)" % (short_number(change), short_number(tolerance)))
+    return ("The last step changed the mesh by %s of its change so far; it converges (and stops) below %s "
+            "(Tolerance)" % (short_number(change), short_number(tolerance)))
 
 
 class ProgressReport:
