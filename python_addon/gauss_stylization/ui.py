@@ -41,10 +41,13 @@ class GAUSS_UL_styles(bpy.types.UIList):
         split.label(text=region)
 
 
+NORMAL_NUMBER_SHARE = 0.16  # of a normal's row, for its number (up to "20" at the default width)
+
+
 def normal_text(vector):
-    """"-0.79  -0.19  0.58": one label, so that its numbers cannot run together (in three labels of a
+    """"-0.79 -0.19 0.58": one label, so that its numbers cannot run together (in three labels of a
     third of the row each, a minus sign filled the gap before it)."""
-    return "  ".join("%.2f" % value for value in vector)
+    return " ".join("%.2f" % value for value in vector)
 
 
 class GAUSS_UL_normals(bpy.types.UIList):
@@ -53,7 +56,7 @@ class GAUSS_UL_normals(bpy.types.UIList):
     the Gauss sphere."""
 
     def draw_item(self, context, layout, data, item, icon, active_data, active_propname, index):
-        split = layout.split(factor=0.16)
+        split = layout.split(factor=NORMAL_NUMBER_SHARE)
         split.label(text="%d" % (index + 1))
         split.label(text=normal_text(item.vector))
 

@@ -88,7 +88,7 @@ def test_a_custom_normal_is_one_row_with_its_number_and_x_y_z(addon):
     addon.ui.GAUSS_UL_normals.draw_item(None, bpy.context, layout, slot, slot.custom_normals[1], 'NONE',
                                         slot, "active_normal_index", 1)
     # One label, spaces between the numbers: in a label each, "-0.79-0.19 0.58" ran together.
-    assert layout.rows == [("label", "2", 'NONE'), ("label", "-0.79  -0.19  0.58", 'NONE')]
+    assert layout.rows == [("label", "2", 'NONE'), ("label", "-0.79 -0.19 0.58", 'NONE')]
     slot.active_normal_index = 1  # ... and is edited under the list
     assert ("prop", "vector", "#2", -1) in draw(addon.ui.VIEW3D_PT_gauss_styles)
 
