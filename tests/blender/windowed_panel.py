@@ -430,7 +430,8 @@ def bake_start_keeps_the_panels_in_place(name):
         top = int(0.3 * settled.shape[0])  # below the bake's box, whose frame count changes
         rows = _rows_that_differ(before_first[-1], settled, top)
         d.check("while a bake's first frame is baked the sidebar shows its panels in place",
-                rows <= 4, "%d rows differ from the settled sidebar (%d drawings before it)" % (rows, len(before_first)))
+                rows <= 4,  # a glitch moves hundreds
+                "%d rows differ from the settled sidebar (%d drawings before it)" % (rows, len(before_first)))
     bpy.data.objects.remove(capsule)
     bpy.data.objects.remove(bpy.data.objects["Rig"])
     obj.hide_set(False)

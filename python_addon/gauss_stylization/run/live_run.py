@@ -275,8 +275,9 @@ class LiveRun:
         """The sidebar box's first row: "Preparing... 40%", "Stylizing live", "Converged" or "Held back"."""
         if self.preparing:
             return progress_text("Preparing", self.setup.fraction)
-        if self.sessions and len(self.converged) == len(self.sessions):
-            return "Held back" if any(held_back(s) for s in self.sessions) else CONVERGED
+        stopped = [s for s in self.sessions if s in self.converged or held_back(s)]
+        if self.sessions and len(stopped) == len(self.sessions):
+            return "Held back" if any(held_back(s) for s in stopped) else CONVERGED
         return "Stylizing live"
 
     def panel_lines(self):
