@@ -61,7 +61,8 @@ void bind_iteration(pybind11::class_<SolverWrapper>& cls) {
         s.core().set_avoid_self_intersections(on);
       }, "No step (nor a move of the pins) brings two faces into contact that were not in contact when\n"
          "it was switched on (or at reset() and set_vertices()): vertices that would are held back, so the\n"
-         "result never passes through itself where the input did not. Costs up to about a step's time.\n"
+         "result never passes through itself where the input did not. Each step takes longer (how much:\n"
+         "docs/performance.md, \"The guard's cost\").\n"
          "Default: DEFAULTS['avoid_self_intersections'].");
   cls.def_property_readonly("held_vertices", [](SolverWrapper& s) {
         std::lock_guard<std::mutex> lock(s.mutex());

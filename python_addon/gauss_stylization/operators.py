@@ -263,12 +263,18 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         # Blender cancels a modal operator when e.g. its window closes, a file loads or it quits.
         self.stop(context, keep=False)
 
+    def status_line(self):
+        """The header and status bar text: the run's state, notes and keys, or what a handler that has
+        the keys for now says (a modal_events.KeysNote: a drag's Esc is not the run's)."""
+        keys_taken = [note for note in self.notes.values() if isinstance(note, modal_events.KeysNote)]
+        if keys_taken:
+            return TITLE + ": " + keys_taken[-1]
+        notes = "".join("  |  " + note for note in self.notes.values() if note)
+        return self.live.status_text() + notes + "  |  " + "  |  ".join(self.key_hints())
+
     def show_status(self, context, clear=False):
         """Write the header and status bar text (event handlers call it after changing notes)."""
-        text = None
-        if not clear:
-            notes = "".join("  |  " + note for note in self.notes.values() if note)
-            text = self.live.status_text() + notes + "  |  " + "  |  ".join(self.key_hints())
+        text = None if clear else self.status_line()
         area = existing_area(self._area_pointer)
         if area is not None:
             area.header_text_set(text)

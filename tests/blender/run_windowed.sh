@@ -16,9 +16,10 @@
 #   windowed_quit.py         quitting during a run must not save undo steps 0 in the preferences
 #   tests/blender/run_windowed.sh [BUILD_DIR]
 # Prints each part's result and "windowed summary: N passed, M failed"; exits non-zero on any
-# failure, a crash or a hang. Screenshots go to BUILD_DIR/screenshots/: the sidebar panel (panel.png),
-# the Gauss sphere overlay (sphere_overlay.png), a pin handle being dragged (handle_drag.png) and a live run
-# holding vertices back (self_intersections.png).
+# failure, a crash or a hang. Screenshots go to BUILD_DIR/screenshots/: the sidebar panel (sidebar_*.png,
+# settling_tooltip.png, bake_start_*.png), the Gauss sphere overlay (sphere_overlay.png), a pin handle
+# being dragged (handle_drag.png, its header: handle_drag_header.png) and a live run holding vertices back
+# (self_intersections.png).
 set -u
 HERE=$(cd "$(dirname "$0")" && pwd)
 BUILD=$(cd "${1:-$HERE/../../build}" && pwd) || { echo "windowed: no build dir"; exit 2; }

@@ -14,7 +14,8 @@ business) or what modal() returns: {'RUNNING_MODAL'} to take the event,
     run.preparing           -> True while the solvers are still being set up
     run.live.sessions       -> the session.Session of each object in the run
     run.scratch             -> dict for handlers' own state during this run, by handler name
-    run.notes               -> dict of texts the status bar shows after the run's own, by name
+    run.notes               -> dict of texts the status bar shows after the run's own, by name; a
+                               KeysNote there takes the place of the run's texts while it is set
     run.show_status(context)   redraws the header and status bar (after a handler changed notes)
 
 Another feature adds its handler with ``add(handler, order, on_end)`` when it
@@ -35,6 +36,11 @@ HANDLES = 200   # for things in the viewport that take presses and drags (pin ha
 CLICKS = 300    # a plain click in the free viewport keeps, a right-click cancels
 
 _handlers = []  # (order, handler, on_end), sorted by order
+
+
+class KeysNote(str):
+    """A note (run.notes) of a handler that has the keys for now, e.g. a handle being dragged: the
+    header and status bar show it alone, so that no key is said to do two things."""
 
 
 def add(handler, order, on_end=None):

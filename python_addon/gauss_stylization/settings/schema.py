@@ -163,7 +163,7 @@ OBJECT = (
          "left alone), so the shape does not shrink", live=Live.SETTER, panel=Panel.SOLVER),
     Bool("avoid_self_intersections", "Avoid Self-Intersections", "Never let the surface pass through itself: "
          "where a step would make faces cross or touch that did not at the start, their vertices are held "
-         "back (for 3D printing and carving; costs up to about one more step's time)",
+         "back (for 3D printing and carving; each step takes longer: docs/performance.md, The guard's cost)",
          live=Live.SETTER, panel=Panel.SOLVER),
     Bool("use_modifiers", "Use Modifiers", "Stylize the mesh as it is shown: modifiers, armature and shape "
          "keys at the current frame (otherwise the base mesh, under the modifiers)", default=False,
