@@ -50,20 +50,24 @@ def test_a_region_of_weight_one_is_the_whole_mesh_bit_for_bit(addon):
         np.testing.assert_array_equal(painted, _result(addon, obj, 8))
 
 
-def test_a_weight_of_a_half_is_half_the_mu(addon):
+def test_a_weight_of_a_half_is_the_curves_share_of_the_mu(addon):
+    # The paint curve (settings/paint_curve.py) turns a painted 0.5 into a mu scale of about 0.076.
     obj, _ = _painted_sphere(lambda co: np.full(len(co), 0.5))
     slot = obj.gauss_stylization.styles[0]
+    scale = float(addon.settings.paint_curve.strength([0.5])[0])
+    assert 0.05 < scale < 0.1
     for method in ('GAUSS', 'CUBIC'):
         obj.gauss_stylization.method = method
         slot.vertex_group, slot.mu = "Paint", 1.0
         half = _result(addon, obj, 8)
-        slot.vertex_group, slot.mu = "", 0.5
+        slot.vertex_group, slot.mu = "", scale
         np.testing.assert_array_equal(half, _result(addon, obj, 8))
 
 
 def test_weights_are_read_from_the_group_and_zero_leaves_faces_unstyled(addon):
     # Weight 0 below the equator, rising to 1 at the top: polygons whose vertices all weigh 0 have
-    # no style; those whose corners mostly carry a weight, the mean of those corners' weights.
+    # no style; those whose corners mostly carry a weight, the mean of those corners' weights
+    # through the paint curve.
     obj, start = _painted_sphere(lambda co: np.clip(co[:, 2], 0.0, 1.0))
     plan = addon.run.session.Plan(obj)
     try:
@@ -74,7 +78,7 @@ def test_weights_are_read_from_the_group_and_zero_leaves_faces_unstyled(addon):
         painted = arrays.polygon_average((expected > 0).astype(float))
         polygon_mean = np.where(painted > 0.5, arrays.polygon_average(expected) / np.maximum(painted, 1e-30),
                                 0.0)[arrays.tri_polygon]
-        np.testing.assert_allclose(face_w[:, 0], polygon_mean, atol=1e-6)
+        np.testing.assert_allclose(face_w[:, 0], addon.settings.paint_curve.strength(polygon_mean), atol=1e-6)
         below = polygon_mean == 0
         assert below.sum() > len(below) // 3 and np.all(face_w[below] == 0)
     finally:
