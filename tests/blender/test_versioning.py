@@ -101,7 +101,8 @@ def test_first_style_keeps_the_last_free_slot_and_unstyled_takes_the_first(addon
     try:
         weights = plan.regions[0]
         obj.gauss_stylization.uncovered = 'FIRST_SLOT'
-        old = addon.settings.styles.face_weights(plan.arrays, plan.weights, ["", "", "Paint"], 'FIRST_SLOT')
+        old = addon.settings.styles.face_weights(plan.arrays, plan.weights, ["", "", "Paint"], 'FIRST_SLOT',
+                                                 plan.paint_steepness)
     finally:
         plan.release()
     np.testing.assert_array_equal(weights[:, 0], 0.75)

@@ -83,21 +83,21 @@ def _filler(slot_groups, uncovered):
     return free[0] if free else None
 
 
-def _slot_weights(values_of, slot_groups, uncovered, count):
+def _slot_weights(values_of, slot_groups, uncovered, count, steepness):
     """(count, #slots) float32: each slot's weight on ``count`` polygons or vertices.
 
     values_of(group): the group's weights there ((count,) floats in [0, 1]). A slot with a
     Region weighs its group's weight; where Regions overlap their weights add up. The filler slot
     (_filler) takes what the Regions leave: 1 minus their summed weight, at least 0. Without a
     filler, a face's summed weight says how strongly it is stylized and goes through the paint
-    curve (paint_curve.scale_blend)."""
+    curve of that ``steepness`` (paint_curve.scale_blend)."""
     weights = np.zeros((count, len(slot_groups)), np.float64)
     for index, group in enumerate(slot_groups):
         if group:
             weights[:, index] = values_of(group)
     filler = _filler(slot_groups, uncovered)
     if filler is None:
-        weights = paint_curve.scale_blend(weights)
+        weights = paint_curve.scale_blend(weights, steepness)
     else:  # every face is stylized in full: the weights only say how its styles mix
         weights[:, filler] += np.maximum(0.0, 1.0 - weights.sum(axis=1))
     return np.clip(weights, 0.0, 1.0).astype(np.float32)
@@ -114,11 +114,11 @@ def region_strength(arrays, vertex_weights):
     return np.where(painted > REGION_THRESHOLD, total / np.maximum(painted, 1e-30), 0.0)
 
 
-def face_weights(arrays, group_weights, slot_groups, uncovered):
+def face_weights(arrays, group_weights, slot_groups, uncovered, steepness):
     """(#triangles, #slots) float32: each solver triangle's weight for each slot (Solver.set_face_weights).
 
-    A slot's weight on a polygon is its Region's strength there (region_strength; through the paint
-    curve where no slot fills the rest, see _slot_weights), which scales the slot's mu: painting a
+    A slot's weight on a polygon is its Region's strength there (region_strength; where no slot fills
+    the rest, through the paint curve of ``steepness``, paint_curve.steepness), which scales the slot's mu: painting a
     Region in Weight Paint mode paints its strength, 0 leaves the polygon to the other slots.
     Overlapping Regions blend: the polygon's preference is the weight-scaled sum of its slots'. A
     slot without a Region (or, for Other Faces = First Style, the first slot) takes what the Regions
@@ -126,7 +126,7 @@ def face_weights(arrays, group_weights, slot_groups, uncovered):
     vertex's strength from its faces' (no vertex weights), so weights of 1 give exactly the old
     per-vertex strengths there too."""
     polygons = _slot_weights(lambda group: region_strength(arrays, group_weights[group]), slot_groups,
-                             uncovered, arrays.num_polygons)
+                             uncovered, arrays.num_polygons, steepness)
     return polygons[arrays.tri_polygon]
 
 
