@@ -22,10 +22,13 @@ from .run.progress import ProgressReport
 from .run.targets import TITLE, plan_objects, report_skipped, stylize_objects, stylize_problem
 from .settings import schema, settings_io
 from .settings.validation import object_problem, poll_result
-from .view.viewport import existing_area, redraw_viewports
+from .view.viewport import redraw_viewports
 
 PANEL_SECONDS = 0.25  # how often a live run redraws the sidebar (the viewport: every tick that steps)
 KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel")  # what modal_events does with keys
+# In Weight Paint clicks paint (modal_events.clicks lets them through) and the object holds still.
+PAINT_HINTS = ("Left-drag: paint the Region's strength", "Ctrl+Tab / Back to Object Mode: stop painting, "
+               "the run takes the strokes", "Enter: keep", "Esc: cancel")
 PIN_HINT = "Drag a pin: move its handle"  # what handle_tool does, where a run has pins
 SETUP_HINT = "Esc: cancel"
 EDITS_UNDO_NAME = "Edits during Stylize"  # the undo step of what was edited during a cancelled run
@@ -92,8 +95,6 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         self.scratch = {}  # event handlers' state (modal_events)
         self.notes = {}    # event handlers' status texts (modal_events)
         self._handlers_told = False  # modal_events.run_ended called
-        # The area's address only, never a Python reference to it: see viewport.existing_area.
-        self._area_pointer = context.area.as_pointer() if context.area else None
         self._operator_at_start = _last_registered_operator(context)
         self._operator_ran = False  # see _operators_ran()
         self._progress = ProgressReport(context, TITLE, status=False)
@@ -264,14 +265,12 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         self.stop(context, keep=False)
 
     def show_status(self, context, clear=False):
-        """Write the header and status bar text (event handlers call it after changing notes)."""
+        """Write the status bar text (event handlers call it after changing notes). The viewport's
+        header keeps its menus: a run lasts, and its mode menu is a way to Weight Paint."""
         text = None
         if not clear:
             notes = "".join("  |  " + note for note in self.notes.values() if note)
             text = self.live.status_text() + notes + "  |  " + "  |  ".join(self.key_hints())
-        area = existing_area(self._area_pointer)
-        if area is not None:
-            area.header_text_set(text)
         if context.workspace is not None:
             context.workspace.status_text_set(text)
 
@@ -284,6 +283,8 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         """The keys that act on the run now; the pin hint only where an object has a Pin Group."""
         if self.live.preparing:
             return (SETUP_HINT,)
+        if bpy.context.mode == 'PAINT_WEIGHT':
+            return PAINT_HINTS
         pinned = any(session.object_alive() and session.obj.gauss_stylization.pin_group
                      for session in self.live.sessions)
         return KEY_HINTS + (PIN_HINT,) if pinned else KEY_HINTS

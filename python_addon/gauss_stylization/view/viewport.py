@@ -19,22 +19,6 @@ GIZMO_BUTTONS = 4        # zoom, pan, camera, perspective/orthographic (fewer wh
 UI_UNIT = 20.0           # Blender's UI_UNIT_X at scale 1
 
 
-def existing_area(pointer):
-    """The screen area at address ``pointer`` if it still exists, else None.
-
-    Areas are not IDs: when one is freed (areas joined or closed, a file loaded)
-    Python is not told, and a kept reference would write into freed memory. So
-    the area is looked for among the live ones each time (a few dozen at most).
-    """
-    if pointer is None:
-        return None
-    for screen in bpy.data.screens:
-        for area in screen.areas:
-            if area.as_pointer() == pointer:
-                return area
-    return None
-
-
 def redraw_viewports(context, sidebars=True):
     """Redraw the 3D views; ``sidebars``: their sidebars too (a run's ticks leave them out:
     redrawing every panel at every tick costs more than the tick itself on a slow machine)."""
