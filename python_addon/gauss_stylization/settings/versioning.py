@@ -30,8 +30,10 @@ def stamp_property():
 
 def _has_slots(obj):
     """Settings a file holds and the add-on may write: a local object's, with style slots (Other Faces
-    acts only through them; and reading an object's settings gives it settings)."""
-    return obj.library is None and len(obj.gauss_stylization.styles) > 0
+    acts only through them). Asked without reading obj.gauss_stylization where it was never set, since
+    reading it would give every object of the file settings."""
+    return (obj.library is None and obj.is_property_set("gauss_stylization")
+            and len(obj.gauss_stylization.styles) > 0)
 
 
 def bring_up_to_date(settings):
