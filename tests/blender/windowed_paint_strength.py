@@ -131,7 +131,8 @@ def _click_sidebar_button(idname):
     row = int(18 * bpy.context.preferences.system.ui_scale)
     found["clicked"] = False
     known = [found[idname]] if idname in found else []  # where it was last time first
-    for y in known + list(range(ui.y + ui.height - row // 2, ui.y, -row // 2)):
+    # Every button row is hit once going down from the top (the run's rows come first).
+    for y in known + list(range(ui.y + ui.height - row // 2, ui.y, -row)):
         yield from _operator_under_mouse(x, y)
         if idname in found["command"]:
             kit.press('LEFTMOUSE', x, y)
