@@ -165,6 +165,7 @@ def _screenshot(name, whole_window=False):
 def the_documented_ways(name, _prepared):
     obj = bpy.data.objects[name]
     original = coords(obj)
+    obj.vertex_groups["Paint"].add(list(range(len(original))), 0.0, 'REPLACE')  # what the stroke paints shows
     op_class = kit.addon().operators
     paint = kit.addon().operators.PAINT_HINTS
     yield from live_run(3)
