@@ -19,8 +19,8 @@ bl_info = {
 # tests/python/test_addon_layers.py checks it).
 MODULES = (
     "errors", "native",
-    "settings.fields", "settings.schema", "settings.properties", "settings.settings_io", "settings.validation",
-    "settings.styles",
+    "settings.fields", "settings.schema", "settings.versioning", "settings.properties", "settings.settings_io",
+    "settings.validation", "settings.paint_curve", "settings.styles",
     "mesh.mesh_io", "mesh.crossings", "mesh.source", "mesh.cache_modifier", "mesh.output", "mesh.rest_store",
     "view.viewport", "view.gpu_compat", "view.sidebar",
     "run.undo_guard", "run.runs", "run.progress", "run.solver_setup", "run.session", "run.targets",
@@ -68,6 +68,7 @@ def register():
         _tooltip_from_docstring(cls)
         bpy.utils.register_class(cls)
     settings.properties.register_pointer()
+    settings.versioning.register_handlers()
     run.runs.register_handlers()
     sphere.sphere_overlay.register()
     sphere.sphere_editing.register()
@@ -78,6 +79,7 @@ def register():
 def unregister():
     bake.farm_cli.unregister()
     run.runs.unregister_handlers()
+    settings.versioning.unregister_handlers()
     run.runs.stop_all(bpy.context)  # first: a run's end is told to the event handlers below (on_end)
     handles.handle_tool.unregister()
     sphere.sphere_editing.unregister()

@@ -73,6 +73,8 @@ class VIEW3D_PT_gauss_stylization(GaussPanel, bpy.types.Panel):
         for run in runs.live_runs():
             _draw_run_state(layout, run)
         obj = mesh_object(context)
+        if obj is not None and runs.session_of(obj) is not None:
+            _draw_paint_switch(layout, context)
         if obj is None:
             layout.label(text="Select a mesh object", icon='INFO')
             return
@@ -156,6 +158,15 @@ def _draw_run_state(layout, run):
             wrapped_label(box, text, icon)
     for hint in hints:
         wrapped_label(box, hint)
+
+
+def _draw_paint_switch(layout, context):
+    """During a live run: to Weight Paint with the active style's Region, and back (the mode menu
+    and Ctrl+Tab do the same)."""
+    if context.mode == 'PAINT_WEIGHT':
+        layout.operator("object.gauss_paint_region", text="Back to Object Mode", icon='OBJECT_DATAMODE')
+    else:
+        layout.operator("object.gauss_paint_region", icon='BRUSH_DATA')
 
 
 class VIEW3D_PT_gauss_solver(GaussSubPanel, bpy.types.Panel):

@@ -191,6 +191,39 @@ def test_the_pin_hint_shows_only_where_a_run_has_a_pin_group(addon):
         live.cancel()
 
 
+def test_while_painting_the_hints_say_what_clicks_do(addon):
+    # In Weight Paint a left-drag paints (modal_events lets clicks through): the hints must not offer
+    # "Left-click: keep / Right-click: cancel" then, and must say how to go back, keep and cancel.
+    obj = helpers.suzanne(levels=0)
+    helpers.add_slot(obj, 'CUBE')
+    hints = addon.operators.OBJECT_OT_gauss_stylize.key_hints
+    live = helpers.live_run([obj])
+    try:
+        holder = type("Run", (), {"live": live})()
+        assert any("Left-click" in hint for hint in hints(holder))
+        bpy.ops.object.mode_set(mode='WEIGHT_PAINT')
+        painting = " | ".join(hints(holder))
+        assert "Left-click" not in painting and "Right-click" not in painting
+        assert "paint" in painting.lower() and "Object Mode" in painting
+        assert "Enter: keep" in painting and "Esc: cancel" in painting
+    finally:
+        if obj.mode != 'OBJECT':
+            bpy.ops.object.mode_set(mode='OBJECT')
+        live.cancel()
+
+
+def test_the_paint_region_button_paints_the_active_region_and_comes_back(addon):
+    obj = helpers.suzanne(levels=0)
+    helpers.add_group(obj, "Other", range(5))
+    helpers.add_group(obj, "Paint", range(10))
+    helpers.add_slot(obj, 'CUBE', "Paint")
+    obj.vertex_groups.active_index = obj.vertex_groups["Other"].index
+    assert bpy.ops.object.gauss_paint_region() == {'FINISHED'}
+    assert obj.mode == 'WEIGHT_PAINT' and obj.vertex_groups.active.name == "Paint"
+    assert bpy.ops.object.gauss_paint_region() == {'FINISHED'}
+    assert obj.mode == 'OBJECT'
+
+
 @pytest.mark.parametrize("euler, words", [
     ((0, 0, 0), "not turned"),
     ((90, 0, 0), "90.0 degrees about +X: the style's axes X along +X, Y along +Z, Z along -Y"),

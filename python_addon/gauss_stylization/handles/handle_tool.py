@@ -138,6 +138,8 @@ def grab(run, context, event):
     """modal_events handler (HANDLES): a left press on a pin grabs its handle."""
     if event.type != 'LEFTMOUSE' or event.value != 'PRESS' or run.preparing:
         return None
+    if context.mode == 'PAINT_WEIGHT':  # a press there paints (the status bar says so)
+        return None
     if not free_viewport_at(context, event.mouse_x, event.mouse_y):
         return None  # headers, sidebar, gizmo, other editors: Blender's
     tool = tool_of(run)

@@ -177,12 +177,14 @@ OBJECT = (
            'MESH', panel=Panel.MAIN),
     VertexGroup("pin_group", "Pin Group", "Vertices in this group (weight above %g) keep their position"
                 % PIN_THRESHOLD, live=Live.PINS, panel=Panel.MAIN),
-    Choice("uncovered", "Uncovered Faces", "Style of the faces outside every style's vertex group",
-           (('FIRST_SLOT', "First Style", "What the styles' Regions leave of a face (1 minus their weights) "
-             "goes to the first style", 0),
-            ('UNSTYLED', "Unstyled", "Faces outside every style's Region only keep their shape; a Region's "
-             "weight below 1 stylizes less", 1)),
-           'FIRST_SLOT', live=Live.REGIONS, panel=Panel.STYLES, text="Other Faces"),
+    # Files saved before Unstyled became the default keep First Style (settings/versioning.py).
+    Choice("uncovered", "Uncovered Faces", "Where what the styles' Regions leave of a face goes when every "
+           "style has a Region (a style without one takes it otherwise)",
+           (('FIRST_SLOT', "First Style", "To the first style, whose own Region then is whole again: painting "
+             "it changes nothing (the rule of files saved before Unstyled became the default)", 0),
+            ('UNSTYLED', "Unstyled", "Nowhere: faces outside every Region only keep their shape, and a "
+             "Region's weight below 1 stylizes less", 1)),
+           'UNSTYLED', live=Live.REGIONS, panel=Panel.STYLES, text="Other Faces"),
     Int("bake_steps", "Bake Steps", "Solver steps per frame of an animation bake (with Warm Start the "
         "first frame runs Script Steps, the others continue from the previous frame)",
         default=10, hard=(1, 100000), soft=(1, 200), panel=Panel.BAKE),
