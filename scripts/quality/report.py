@@ -1,0 +1,100 @@
+"""The quality matrix's table (printed and in docs/quality.md) and the findings it lists: what fails
+issue 26's criteria on today's code, apart from the thresholds (which only say what got worse)."""
+import options
+
+GUARD_SHARE_DROP = 0.05  # issue 26: a guarded run's share within 0.05 of the plain run's
+GRADIENT_GAIN = 0.3  # issue 26: a 0-to-1 gradient gives 0.3 more share at the heavy end than the light one
+
+COLUMNS = ("mesh", "kind", "V", "option", "steps", "conv", "share in>out", "vs plain", "pairs in>out (new)",
+           "held max", "finite, bounded", "ms/step")
+
+
+def _plain_share(record, by_cell):
+    plain = options.by_name(record["option"]).plain
+    other = by_cell.get((record["mesh"], plain))
+    if plain and other and other.get("share") is not None and record.get("share") is not None:
+        return record["share"] - other["share"]
+    return None
+
+
+def _conv(r):
+    if not r.get("converged"):
+        return "no"
+    return "held" if r.get("held_last") else "yes"
+
+
+def row(record, by_cell):
+    """The table's cells of one record."""
+    head = [record["mesh"], record.get("kind", "?"), str(record.get("vertices", "?")), record["option"]]
+    if "crash" in record or "error" in record:
+        what = f"CRASH {record['crash']}" if "crash" in record else f"error: {record['error']}"
+        return head + [what] + [""] * (len(COLUMNS) - len(head) - 1)
+    drop = _plain_share(record, by_cell)
+    share = "n/a" if record["share"] is None else f"{record['share_in']:.3f}>{record['share']:.3f}"
+    if "share_heavy" in record:
+        share += f" (light {record['share_light']:.2f}, heavy {record['share_heavy']:.2f})"
+    pairs = f"{record['pairs_in']}>{record['pairs_out']} ({record['new_pairs']})" if "pairs_out" in record else "n/a"
+    return head + [str(record["steps"]), _conv(record), share, "" if drop is None else f"{drop:+.3f}", pairs,
+                   str(record["held_max"]), f"{'yes' if record['finite'] else 'NO'}, {'yes' if record['bounded'] else 'NO'}",
+                   f"{record['ms_per_step']:.1f}"]
+
+
+def _cells(records):
+    return {(r["mesh"], r["option"]): r for r in records}
+
+
+def text_table(records):
+    by_cell = _cells(records)
+    rows = [COLUMNS] + [row(r, by_cell) for r in records]
+    widths = [max(len(r[i]) for r in rows if i < len(r)) for i in range(len(COLUMNS))]
+    widths[4] = len(COLUMNS[4])  # an error's text runs on past its column
+    return "\n".join("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip() for r in rows)
+
+
+def markdown_table(records):
+    by_cell = _cells(records)
+    lines = ["| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
+    for r in records:
+        cells = [c.replace("|", "/") for c in row(r, by_cell)]
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def findings(records):
+    """What fails issue 26's criteria (or any run's basics): one sentence each."""
+    by_cell = _cells(records)
+    found = []
+    for r in records:
+        where = f"{r['mesh']} / {r['option']}"
+        if "crash" in r:
+            found.append(f"{where}: crashed ({r['crash']})")
+            continue
+        if "error" in r:
+            if r.get("kind") != "broken":
+                found.append(f"{where}: refused ({r['error']})")
+            continue
+        if not r["bounded"]:
+            found.append(f"{where}: result {'not bounded' if r['finite'] else 'not finite'}")
+        if not r["converged"]:
+            found.append(f"{where}: not converged in {r['steps']} steps")
+        if "guard" in options.by_name(r["option"]).tags:
+            if r["converged"] and r["held_last"]:
+                found.append(f"{where}: reports converged while the guard held {r['held_last']} vertices back")
+            if r["held_max"] >= r["vertices"]:
+                found.append(f"{where}: the guard held every vertex ({r['held_max']}) back at some step")
+            if r.get("new_pairs"):
+                found.append(f"{where}: {r['new_pairs']} new crossing pairs")
+            drop = _plain_share(r, by_cell)
+            if r.get("kind") == "closed" and drop is not None and drop < -GUARD_SHARE_DROP:
+                found.append(f"{where}: share {r['share']:.3f}, {-drop:.3f} below the plain run's "
+                             f"(issue 26: within {GUARD_SHARE_DROP})")
+        if "share_heavy" in r and r["share_heavy"] - r["share_light"] < GRADIENT_GAIN:
+            found.append(f"{where}: heavy end {r['share_heavy']:.3f} vs light end {r['share_light']:.3f} "
+                         f"(issue 26: at least {GRADIENT_GAIN} more)")
+    return found
+
+
+def converged_note():
+    return ("conv: yes (reldV below the tolerance), no (the step cap came first), held (reported converged "
+            "while the guard held vertices back in the last step: the guard stopped the run)")
+
