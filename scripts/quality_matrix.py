@@ -10,7 +10,8 @@
                                                                 (of those rows only), with a margin
 
 Options: --options NAMES (comma-separated row names or tags of scripts/quality/options.py), --meshes
-DIR (default $GAUSS_MESH_DIR, else ../shared/meshes), --thresholds FILE, --doc FILE (write the page also for a partial run).
+DIR (default $GAUSS_MESH_DIR, else ../shared/meshes), --thresholds FILE, --doc FILE (write the page
+also for a partial run).
 gauss_core comes from GAUSS_BUILD_DIR (default build/). Exit status 1 names every mesh, option and
 measure that broke its threshold; a full run checks the cells that have one, --fast requires one for
 every cell.
@@ -43,8 +44,9 @@ def _commit():
     return git("rev-parse", "--short=12", "HEAD") + (" (with uncommitted changes)" if dirty else "")
 
 
-def _page(records, seconds, problems):
+def _page(records, seconds, problems, meshes_left=0):
     found = report.findings(records)
+    load = ", ".join(f"{x:.1f}" for x in os.getloadavg())
     lines = [
         "# Quality matrix", "",
         "Every method and option on every mesh in `../shared/meshes` (closed, with boundary, broken), judged",
@@ -52,7 +54,9 @@ def _page(records, seconds, problems):
         "`scripts/quality_matrix.py`; do not edit by hand.", "",
         f"- Run: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, commit {_commit()}, "
         f"{gauss_core.get_num_threads()} solver threads on a machine of {os.cpu_count()} cores, "
-        f"wall time {seconds / 60:.1f} min.",
+        f"wall time {seconds / 60:.1f} min (load average at the end: {load}; the wall times per step "
+        "grow with the load, the CPU times less)." +
+        (f" **Partial: {meshes_left} meshes not run yet.**" if meshes_left else ""),
         f"- Each run steps until reldV < {measure_run.TOLERANCE:g}, at most {measure_run.STEP_CAP} steps, at "
         f"gauss_core's defaults except what the option names (lambda {gauss_core.DEFAULTS['lam']:g} unless "
         "`lN` says N). Options, one row each: `scripts/quality/options.py`.",
@@ -79,10 +83,12 @@ def _page(records, seconds, problems):
         "- held max: the most vertices Avoid Self-Intersections held back in one step (`held_vertices`).",
         f"- {report.converged_note()}.",
         f"- finite, bounded: every coordinate finite; every vertex within {measure_run.BOUND:g} input "
-        "bounding-box diagonals of its centre. ms/step: the median step's wall time.",
+        "bounding-box diagonals of its centre. ms/step (cpu): the median step's wall time (and CPU time, "
+        "summed over the solver's threads).",
         "", "## What fails today", "",
         "Against issue 26's criteria (guard: no new pairs, a share within 0.05 of the plain run's on closed "
-        "meshes, never converged while held back; painting: 0.3 more share at the heavy end), and the basics "
+        "meshes, never converged while held back; painting: 0.3 more share at the heavy end, where the unpainted "
+        "style gains more than that), and the basics "
         "of every run (converged, finite and bounded, no crash; broken meshes may be refused with a clear "
         "error):", "",
     ]
@@ -108,23 +114,29 @@ def main():
         sys.exit(f"no .obj or .ply meshes under {args.meshes}")
 
     def log(record):
-        print(f"  {record['mesh']} / {record['option']}: "
-              f"{record.get('crash') or record.get('error') or 'share %s, %s steps' % (record['share'], record['steps'])}",
-              file=sys.stderr, flush=True)
+        what = (record.get("crash") or record.get("error") or
+                f"share {record['share'] or 0:.3f}, {record['steps']} steps")
+        print(f"  {record['mesh']} / {record['option']}: {what}", file=sys.stderr, flush=True)
 
-    records, seconds = runner.run_matrix(args.meshes, rows, args.fast, log)
+    doc = args.doc or (None if args.fast or args.options else DOC)
+
+    def problems_of(records):
+        table = thresholds.load(args.thresholds)
+        return thresholds.check(records if args.fast else [r for r in records if "crash" in r or
+                                                           r["option"] in table.get(r["mesh"], {})], table)
+
+    def write_page(records, seconds, meshes_left):  # after each mesh: a long run shows how far it is
+        with open(doc, "w") as f:
+            f.write(_page(records, seconds, problems_of(records), meshes_left))
+
+    records, seconds = runner.run_matrix(args.meshes, rows, args.fast, log, write_page if doc else None)
     print(report.text_table(records))
     print(f"\n{len(records)} runs in {seconds:.0f} s")
     if args.write_thresholds:
         thresholds.write(args.thresholds, records)
         print(f"thresholds of {len(records)} runs written to {args.thresholds}")
-    table = thresholds.load(args.thresholds)
-    problems = thresholds.check(records if args.fast else
-                                [r for r in records if r["option"] in table.get(r["mesh"], {}) or "crash" in r], table)
-    doc = args.doc or (None if args.fast or args.options else DOC)
+    problems = problems_of(records)
     if doc:
-        with open(doc, "w") as f:
-            f.write(_page(records, seconds, problems))
         print(f"written {doc}")
     if problems:
         print("\nQUALITY REGRESSION:\n" + "\n".join(f"  {p}" for p in problems), file=sys.stderr)

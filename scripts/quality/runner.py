@@ -20,9 +20,11 @@ FAST_MESHES = (
 
 
 def mesh_files(folder, fast):
-    """Paths relative to `folder` of its .obj and .ply files (of FAST_MESHES if `fast`), sorted."""
-    found = sorted(os.path.relpath(os.path.join(d, f), folder) for d, _, files in os.walk(folder)
-                   for f in files if f.lower().endswith((".obj", ".ply")))
+    """Paths relative to `folder` of its .obj and .ply files (of FAST_MESHES if `fast`), smallest file
+    first (a long run has the most meshes done early)."""
+    found = sorted((os.path.relpath(os.path.join(d, f), folder) for d, _, files in os.walk(folder)
+                    for f in files if f.lower().endswith((".obj", ".ply"))),
+                   key=lambda m: (os.path.getsize(os.path.join(folder, m)), m))
     return [m for m in found if m in FAST_MESHES] if fast else found
 
 
@@ -64,10 +66,13 @@ def run_mesh(folder, mesh, names, log):
     return records
 
 
-def run_matrix(folder, rows, fast, log):
-    """All records of the options `rows` on the meshes of `folder`, and the wall time in seconds."""
+def run_matrix(folder, rows, fast, log, mesh_done=None):
+    """All records of the options `rows` on the meshes of `folder`, and the wall time in seconds;
+    `mesh_done(records, seconds, meshes left)` is called after each mesh."""
     start = time.monotonic()
-    records = []
-    for mesh in mesh_files(folder, fast):
+    records, meshes = [], mesh_files(folder, fast)
+    for i, mesh in enumerate(meshes):
         records += run_mesh(folder, mesh, [o.name for o in rows], log)
+        if mesh_done:
+            mesh_done(records, time.monotonic() - start, len(meshes) - i - 1)
     return records, time.monotonic() - start
