@@ -87,7 +87,8 @@ def _page(records, seconds, problems, meshes_left=0):
         "summed over the solver's threads).",
         "", "## What fails today", "",
         "Against issue 26's criteria (guard: no new pairs, a share within 0.05 of the plain run's on closed "
-        "meshes, never converged while held back; painting: 0.3 more share at the heavy end, where the unpainted "
+        "meshes, never converged while held back; painting: a uniform weight w within 0.1 of the linear response "
+        "share(0) + w (share(1) - share(0)), 0.3 more share at the heavy end of a gradient where the unpainted "
         "style gains more than that), and the basics "
         "of every run (converged, finite and bounded, no crash; broken meshes may be refused with a clear "
         "error):", "",

@@ -1,6 +1,7 @@
 """One cell of the quality matrix: an option (options.py) run on one mesh, and what it records.
 
-The run steps until reldV < TOLERANCE or STEP_CAP steps, one step at a time, so that the vertices the
+The run steps until reldV < TOLERANCE (stopped; `converged` is what the solver says of it) or
+STEP_CAP steps, one step at a time, so that the vertices the
 guard held back and each step's time are seen after every step: its wall time, and the CPU time of
 the process's threads, which a busy machine inflates less. Errors the module raises on bad input
 are recorded, not raised: a broken mesh must give a clean error or a result.
@@ -63,7 +64,7 @@ def run_option(option, V, F, pairs_in):
         if weights is not None:
             solver.set_face_weights(weights)
         step_ms, cpu_ms, held = [], [], []
-        while len(step_ms) < STEP_CAP and not solver.converged:
+        while len(step_ms) < STEP_CAP and not solver.last_reldv < TOLERANCE:
             start, cpu = time.perf_counter(), time.process_time()
             solver.step()
             step_ms.append(1e3 * (time.perf_counter() - start))
@@ -75,7 +76,8 @@ def run_option(option, V, F, pairs_in):
         return record
     finite = bool(np.isfinite(W).all())
     record.update(
-        steps=len(step_ms), converged=bool(solver.converged), held_max=max(held, default=0),
+        steps=len(step_ms), stopped=bool(solver.last_reldv < TOLERANCE), converged=bool(solver.converged),
+        held_max=max(held, default=0),
         held_last=held[-1] if held else 0, ms_per_step=statistics.median(step_ms) if step_ms else 0.0,
         cpu_ms_per_step=statistics.median(cpu_ms) if cpu_ms else 0.0,
         finite=finite, bounded=finite and _bounded(V, W),
@@ -83,6 +85,8 @@ def run_option(option, V, F, pairs_in):
     if finite:
         pairs_out = crossing_pairs(W, F)
         record.update(pairs_out=len(pairs_out), new_pairs=len(pairs_out - pairs_in))
+    if weights is not None and len(weights) and (weights == weights[0, 0]).all():
+        record["uniform_weight"] = float(weights[0, 0])
     if weights is not None and finite and (weights <= 0.2).any() and (weights >= 0.8).any():
         record["share_light"] = style_share(W, F, style, face_mask=weights[:, 0] <= 0.2)
         record["share_heavy"] = style_share(W, F, style, face_mask=weights[:, 0] >= 0.8)

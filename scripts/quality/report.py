@@ -6,6 +6,9 @@ GUARD_SHARE_DROP = 0.05  # issue 26: a guarded run's share within 0.05 of the pl
 # issue 26: a 0-to-1 gradient gives 0.3 more share at the heavy end than the light one (judged where
 # the style unpainted gains more than that)
 GRADIENT_GAIN = 0.3
+# issue 26: a uniform weight w gives a share within 0.1 of share(0) + w (share(1) - share(0)); weight 0
+# leaves the mesh as it is (no face styled), so share(0) is the input's
+LINEAR_RESPONSE = 0.1
 
 COLUMNS = ("mesh", "kind", "V", "option", "steps", "conv", "share in>out", "vs plain", "pairs in>out (new)",
            "held max", "finite, bounded", "ms/step (cpu)")
@@ -24,9 +27,9 @@ def _yes(flag):
 
 
 def _conv(r):
-    if not r.get("converged"):
+    if not r.get("stopped"):
         return "no"
-    return "held" if r.get("held_last") else "yes"
+    return "held" if r.get("held_last") else "yes" if r.get("converged") else "stopped"
 
 
 def row(record, by_cell):
@@ -81,11 +84,12 @@ def findings(records):
             continue
         if not r["bounded"]:
             found.append(f"{where}: result {'not bounded' if r['finite'] else 'not finite'}")
-        if not r["converged"]:
+        if not r["stopped"]:
             found.append(f"{where}: not converged in {r['steps']} steps")
         if "guard" in options.by_name(r["option"]).tags:
-            if r["converged"] and r["held_last"]:
-                found.append(f"{where}: reports converged while the guard held {r['held_last']} vertices back")
+            if r["stopped"] and r["held_last"]:
+                found.append(f"{where}: the guard stopped the run ({r['held_last']} vertices held back in its "
+                             f"last step){', and it reports converged' if r['converged'] else ''}")
             if r["held_max"] >= r["vertices"]:
                 found.append(f"{where}: the guard held every vertex ({r['held_max']}) back at some step")
             if r.get("new_pairs"):
@@ -96,6 +100,11 @@ def findings(records):
                              f"(issue 26: within {GUARD_SHARE_DROP})")
         plain = by_cell.get((r["mesh"], options.by_name(r["option"]).plain), {})
         reachable = plain.get("share") is not None and plain["share"] - plain["share_in"] > GRADIENT_GAIN
+        if "uniform_weight" in r and plain.get("share") is not None and r["share"] is not None:
+            linear = r["share_in"] + r["uniform_weight"] * (plain["share"] - r["share_in"])
+            if abs(r["share"] - linear) > LINEAR_RESPONSE:
+                found.append(f"{where}: share {r['share']:.3f}, a linear response gives {linear:.3f} "
+                             f"(issue 26: within {LINEAR_RESPONSE})")
         if "share_heavy" in r and reachable and r["share_heavy"] - r["share_light"] < GRADIENT_GAIN:
             found.append(f"{where}: heavy end {r['share_heavy']:.3f} vs light end {r['share_light']:.3f} "
                          f"(issue 26: at least {GRADIENT_GAIN} more)")
@@ -103,6 +112,8 @@ def findings(records):
 
 
 def converged_note():
-    return ("conv: yes (reldV below the tolerance), no (the step cap came first), held (reported converged "
-            "while the guard held vertices back in the last step: the guard stopped the run)")
+    return ("conv: yes (reldV below the tolerance and the solver says converged), no (the step cap came "
+            "first), held (reldV below the tolerance while the guard held vertices back in the last step: the "
+            "guard stopped the run, whatever `converged` says), stopped (reldV below the tolerance, the "
+            "solver says not converged, nothing held)")
 

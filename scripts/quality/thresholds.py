@@ -18,7 +18,8 @@ PAIRS_MARGIN = 1.25  # times the new pairs measured, plus 2; none measured allow
 
 
 def converged_clean(record):
-    return bool(record.get("converged")) and record.get("held_last", 0) == 0
+    """Stopped below the tolerance, the solver says converged, and the guard held nothing back."""
+    return bool(record.get("stopped") and record.get("converged")) and record.get("held_last", 0) == 0
 
 
 def make(record):
@@ -47,7 +48,7 @@ def violations(record, threshold):
     if threshold.get("finite_bounded") and not record["bounded"]:
         broken.append(f"{where}: finite_bounded: result {'not bounded' if record['finite'] else 'not finite'}")
     if threshold.get("must_converge") and not converged_clean(record):
-        why = "stopped by the guard" if record.get("converged") else f"not within {record['steps']} steps"
+        why = "stopped by the guard" if record.get("stopped") else f"not within {record['steps']} steps"
         broken.append(f"{where}: must_converge: {why}")
     if "min_share" in threshold and (record["share"] is None or record["share"] < threshold["min_share"]):
         share = "n/a" if record["share"] is None else f"{record['share']:.3f}"
