@@ -1,6 +1,6 @@
 """scripts/quality_matrix.py, the quality matrix: a run that breaks its threshold fails the check,
-naming mesh, option and measure (so CI's --fast run is a check that can fail), and a mesh the solver
-refuses is a recorded error, not a crash."""
+naming mesh, option and measure (so CI's --fast run is a check that can fail), a mesh the solver
+refuses is a recorded error, and a crash costs one record, not the matrix."""
 import json
 import os
 import subprocess
@@ -10,6 +10,7 @@ from conftest import BUILD, REPO
 from meshes import icosphere
 
 sys.path.insert(0, str(REPO / "scripts" / "quality"))
+import runner  # noqa: E402
 import thresholds  # noqa: E402
 
 
@@ -73,3 +74,18 @@ def test_every_measure_of_a_threshold_is_checked():
     assert "crashed" in thresholds.check([{"mesh": "m.obj", "option": "cube +avoid", "crash": "exit -11"}], table)[0]
     missing = thresholds.check([_record(option="cube")], table)
     assert missing and "1 runs have no threshold (m.obj / cube)" in missing[0]
+
+
+def test_a_worker_that_crashes_costs_one_record_and_the_mesh_goes_on(monkeypatch):
+    crash_on = "cube +avoid"
+    script = ("import json, os, signal, sys\n"
+              "for name in sys.argv[1:]:\n"
+              "    print(json.dumps({'start': name, 'vertices': 3, 'faces': 1, 'kind': 'closed'}), flush=True)\n"
+              f"    if name == {crash_on!r}: os.kill(os.getpid(), signal.SIGSEGV)\n"
+              "    print(json.dumps({'option': name, 'error': 'ValueError: fake'}), flush=True)\n")
+    monkeypatch.setattr(runner, "_worker", lambda folder, mesh, names: subprocess.Popen(
+        [sys.executable, "-c", script, *names], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True))
+    records = runner.run_mesh("folder", "m.obj", ["cube", crash_on, "cubic"], log=lambda record: None)
+    assert [r["option"] for r in records] == ["cube", crash_on, "cubic"]
+    assert "exit code -11" in records[1]["crash"] and records[1]["kind"] == "closed"
+    assert "error" in records[0] and "error" in records[2]
