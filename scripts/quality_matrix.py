@@ -93,8 +93,9 @@ def _page(records, seconds, problems, meshes_left=0):
         "of every run (converged, finite and bounded, no crash; broken meshes may be refused with a clear "
         "error):", "",
     ]
-    lines += [f"- {f}" for f in found] or ["- nothing"]
-    lines += ["", "Threshold violations in this run:", ""]
+    for heading, sentences in found.items():
+        lines += [f"### {heading} ({len(sentences)})", ""] + ([f"- {f}" for f in sentences] or ["- none"]) + [""]
+    lines += ["### Threshold violations in this run", ""]
     lines += [f"- {p}" for p in problems] or ["- none"]
     lines += ["", "## The matrix", "", report.markdown_table(records), ""]
     return "\n".join(lines)

@@ -69,45 +69,62 @@ def markdown_table(records):
     return "\n".join(lines)
 
 
-def findings(records):
-    """What fails issue 26's criteria (or any run's basics): one sentence each."""
-    by_cell = _cells(records)
+def _guard_findings(r, by_cell):
     found = []
+    if r["stopped"] and r["held_last"]:
+        found.append(f"the guard stopped the run ({r['held_last']} vertices held back in its last step)"
+                     f"{', and it reports converged' if r['converged'] else ''}")
+    if r["held_max"] >= r["vertices"]:
+        found.append(f"the guard held every vertex ({r['held_max']}) back at some step")
+    if r.get("new_pairs"):
+        found.append(f"{r['new_pairs']} new crossing pairs")
+    drop = _plain_share(r, by_cell)
+    if r.get("kind") == "closed" and drop is not None and drop < -GUARD_SHARE_DROP:
+        found.append(f"share {r['share']:.3f}, {-drop:.3f} below the plain run's (issue 26: within {GUARD_SHARE_DROP})")
+    return found
+
+
+def _paint_findings(r, by_cell):
+    found = []
+    plain = by_cell.get((r["mesh"], options.by_name(r["option"]).plain), {})
+    if plain.get("share") is None or r["share"] is None:
+        return found
+    if "uniform_weight" in r:
+        linear = r["share_in"] + r["uniform_weight"] * (plain["share"] - r["share_in"])
+        if abs(r["share"] - linear) > LINEAR_RESPONSE:
+            found.append(f"share {r['share']:.3f}, a linear response gives {linear:.3f} (issue 26: within "
+                         f"{LINEAR_RESPONSE})")
+    reachable = plain["share"] - plain["share_in"] > GRADIENT_GAIN
+    if "share_heavy" in r and reachable and r["share_heavy"] - r["share_light"] < GRADIENT_GAIN:
+        found.append(f"heavy end {r['share_heavy']:.3f} vs light end {r['share_light']:.3f} (issue 26: at least "
+                     f"{GRADIENT_GAIN} more)")
+    return found
+
+
+def findings(records):
+    """What fails issue 26's criteria (or any run's basics): {heading: [sentence naming mesh and option]}."""
+    by_cell = _cells(records)
+    found = {"Crashes, refusals, results not finite or not bounded": [], "Avoid Self-Intersections": [],
+             "Painted strength": [], "Not converged within the step cap": []}
     for r in records:
         where = f"{r['mesh']} / {r['option']}"
+        basics = found["Crashes, refusals, results not finite or not bounded"]
         if "crash" in r:
-            found.append(f"{where}: crashed ({r['crash']})")
+            basics.append(f"{where}: crashed ({r['crash']})")
             continue
         if "error" in r:
             if r.get("kind") != "broken":
-                found.append(f"{where}: refused ({r['error']})")
+                basics.append(f"{where}: refused ({r['error']})")
             continue
         if not r["bounded"]:
-            found.append(f"{where}: result {'not bounded' if r['finite'] else 'not finite'}")
+            basics.append(f"{where}: result {'not bounded' if r['finite'] else 'not finite'}")
         if not r["stopped"]:
-            found.append(f"{where}: not converged in {r['steps']} steps")
-        if "guard" in options.by_name(r["option"]).tags:
-            if r["stopped"] and r["held_last"]:
-                found.append(f"{where}: the guard stopped the run ({r['held_last']} vertices held back in its "
-                             f"last step){', and it reports converged' if r['converged'] else ''}")
-            if r["held_max"] >= r["vertices"]:
-                found.append(f"{where}: the guard held every vertex ({r['held_max']}) back at some step")
-            if r.get("new_pairs"):
-                found.append(f"{where}: {r['new_pairs']} new crossing pairs")
-            drop = _plain_share(r, by_cell)
-            if r.get("kind") == "closed" and drop is not None and drop < -GUARD_SHARE_DROP:
-                found.append(f"{where}: share {r['share']:.3f}, {-drop:.3f} below the plain run's "
-                             f"(issue 26: within {GUARD_SHARE_DROP})")
-        plain = by_cell.get((r["mesh"], options.by_name(r["option"]).plain), {})
-        reachable = plain.get("share") is not None and plain["share"] - plain["share_in"] > GRADIENT_GAIN
-        if "uniform_weight" in r and plain.get("share") is not None and r["share"] is not None:
-            linear = r["share_in"] + r["uniform_weight"] * (plain["share"] - r["share_in"])
-            if abs(r["share"] - linear) > LINEAR_RESPONSE:
-                found.append(f"{where}: share {r['share']:.3f}, a linear response gives {linear:.3f} "
-                             f"(issue 26: within {LINEAR_RESPONSE})")
-        if "share_heavy" in r and reachable and r["share_heavy"] - r["share_light"] < GRADIENT_GAIN:
-            found.append(f"{where}: heavy end {r['share_heavy']:.3f} vs light end {r['share_light']:.3f} "
-                         f"(issue 26: at least {GRADIENT_GAIN} more)")
+            found["Not converged within the step cap"].append(f"{where}: {r['steps']} steps")
+        tags = options.by_name(r["option"]).tags
+        if "guard" in tags:
+            found["Avoid Self-Intersections"] += [f"{where}: {f}" for f in _guard_findings(r, by_cell)]
+        if "paint" in tags:
+            found["Painted strength"] += [f"{where}: {f}" for f in _paint_findings(r, by_cell)]
     return found
 
 
