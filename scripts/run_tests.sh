@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # The project's tests.
 #   bash scripts/run_tests.sh          everything (the README's test command, and CI's): C++ (ctest), the
-#                                      Python module (pytest, also against numpy 2), the Blender add-on
+#                                      Python module (pytest, also against numpy 2), the quality matrix's
+#                                      fast subset (scripts/quality_matrix.py --fast), the Blender add-on
 #                                      headless and in a real window (xvfb, Debian's Blender 3.4.1), the
 #                                      farm engines (a single-node Slurm, openjd-cli, Flamenco's job type), the
 #                                      headless suite in every Blender release PyPI serves as a bpy wheel,
 #                                      the Windows/macOS cross check, the C++ tests under ASan+UBSan, a
 #                                      bounded fuzzing run
 #   bash scripts/run_tests.sh --fast   the quick tier for a developer changing a file: ctest without its
-#                                      slow cases, pytest, and the headless Blender suite (a couple of
-#                                      minutes with a warm build)
+#                                      slow cases, pytest, the quality matrix's fast subset, and the
+#                                      headless Blender suite (a couple of minutes with a warm build)
 # Exits non-zero if any part fails; a summary of all parts is printed last.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -43,6 +44,8 @@ else
   run_part "C++ tests (ctest)" ctest --test-dir build --output-on-failure
 fi
 run_part "Python module (pytest)" env GAUSS_BUILD_DIR="$PWD/build" /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python
+run_part "Quality matrix, fast subset (docs/quality.md)" \
+  env GAUSS_BUILD_DIR="$PWD/build" /usr/bin/python3 scripts/quality_matrix.py --fast
 run_part "Blender add-on, headless" \
   blender -b --factory-startup --python-exit-code 1 -P tests/blender/run_headless.py -- "$PWD/build"
 if [ $fast -eq 0 ]; then
