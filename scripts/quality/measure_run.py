@@ -6,6 +6,8 @@ guard held back and each step's time are seen after every step: its wall time, a
 the process's threads, which a busy machine inflates less. Errors the module raises on bad input
 are recorded, not raised: a broken mesh must give a clean error or a result.
 """
+import importlib.util
+import os
 import statistics
 import time
 
@@ -13,6 +15,16 @@ import numpy as np
 
 import gauss_core
 from measures import face_normals, style_share
+
+def paint_curve():
+    """The add-on's paint curve (settings/paint_curve.py, numpy only), loaded by path."""
+    path = os.path.join(os.path.dirname(__file__), "..", "..", "python_addon", "gauss_stylization", "settings",
+                        "paint_curve.py")
+    spec = importlib.util.spec_from_file_location("paint_curve", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
 
 TOLERANCE = 1e-3
 STEP_CAP = 400
@@ -61,8 +73,10 @@ def run_option(option, V, F, pairs_in):
         record["setup_s"] = time.perf_counter() - start
         solver.set_styles([style])
         weights = option.weights(V, F) if option.weights else None
-        if weights is not None:
-            solver.set_face_weights(weights)
+        if weights is not None:  # through the add-on's paint curve, as a painted Region's weights go
+            curve = paint_curve()
+            k = curve.steepness(option.method.upper(), keywords.get("lam", gauss_core.DEFAULTS["lam"]))
+            solver.set_face_weights(curve.scale_blend(weights, k))
         step_ms, cpu_ms, held = [], [], []
         while len(step_ms) < STEP_CAP and not solver.last_reldv < TOLERANCE:
             start, cpu = time.perf_counter(), time.process_time()
@@ -77,6 +91,7 @@ def run_option(option, V, F, pairs_in):
     finite = bool(np.isfinite(W).all())
     record.update(
         steps=len(step_ms), stopped=bool(solver.last_reldv < TOLERANCE), converged=bool(solver.converged),
+        held_back=bool(solver.held_back),
         held_max=max(held, default=0),
         held_last=held[-1] if held else 0, ms_per_step=statistics.median(step_ms) if step_ms else 0.0,
         cpu_ms_per_step=statistics.median(cpu_ms) if cpu_ms else 0.0,

@@ -29,7 +29,7 @@ def _yes(flag):
 def _conv(r):
     if not r.get("stopped"):
         return "no"
-    return "held" if r.get("held_last") else "yes" if r.get("converged") else "stopped"
+    return "held" if r.get("held_back") else "yes" if r.get("converged") else "stopped"
 
 
 def row(record, by_cell):
@@ -71,7 +71,7 @@ def markdown_table(records):
 
 def _guard_findings(r, by_cell):
     found = []
-    if r["stopped"] and r["held_last"]:
+    if r["stopped"] and (r.get("held_back") or r["held_last"]):
         found.append(f"the guard stopped the run ({r['held_last']} vertices held back in its last step)"
                      f"{', and it reports converged' if r['converged'] else ''}")
     if r["held_max"] >= r["vertices"]:
@@ -130,7 +130,6 @@ def findings(records):
 
 def converged_note():
     return ("conv: yes (reldV below the tolerance and the solver says converged), no (the step cap came "
-            "first), held (reldV below the tolerance while the guard held vertices back in the last step: the "
-            "guard stopped the run, whatever `converged` says), stopped (reldV below the tolerance, the "
-            "solver says not converged, nothing held)")
+            "first), held (the solver says held_back: reldV below the tolerance only because the guard "
+            "holds vertices back), stopped (reldV below the tolerance, the solver says neither)")
 

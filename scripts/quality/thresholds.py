@@ -18,8 +18,8 @@ PAIRS_MARGIN = 1.25  # times the new pairs measured, plus 2; none measured allow
 
 
 def converged_clean(record):
-    """Stopped below the tolerance, the solver says converged, and the guard held nothing back."""
-    return bool(record.get("stopped") and record.get("converged")) and record.get("held_last", 0) == 0
+    """Stopped below the tolerance and the solver says converged (not held back by the guard)."""
+    return bool(record.get("stopped") and record.get("converged")) and not record.get("held_back")
 
 
 def make(record):
