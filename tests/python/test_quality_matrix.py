@@ -55,7 +55,7 @@ def test_a_mesh_the_solver_refuses_is_a_recorded_error_and_its_threshold_says_so
 
 
 def _record(**changes):
-    record = {"mesh": "m.obj", "option": "cube +avoid", "steps": 40, "stopped": True, "converged": True, "held_last": 0,
+    record = {"mesh": "m.obj", "option": "cube +avoid", "steps": 40, "stopped": True, "converged": True, "held_back": False, "held_last": 0,
               "finite": True, "bounded": True, "share": 0.8, "new_pairs": 0}
     record.update(changes)
     return record
@@ -67,7 +67,8 @@ def test_every_measure_of_a_threshold_is_checked():
     assert thresholds.check([_record(share=0.7)], table) == ["m.obj / cube +avoid: min_share: share 0.700 < 0.78"]
     assert "max_new_pairs: 3 new" in thresholds.check([_record(new_pairs=3)], table)[0]
     assert "finite_bounded: result not bounded" in thresholds.check([_record(bounded=False)], table)[0]
-    assert "must_converge: stopped by the guard" in thresholds.check([_record(held_last=12)], table)[0]
+    assert "must_converge: stopped by the guard" in thresholds.check(
+        [_record(held_last=12, held_back=True, converged=False)], table)[0]
     capped = _record(stopped=False, converged=False, steps=400)
     assert "must_converge: not within 400 steps" in thresholds.check([capped], table)[0]
     assert "expected a result" in thresholds.check([_record(error="ValueError: x")], table)[0]
