@@ -5,7 +5,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 packages=(
-  build-essential binutils cmake git
+  build-essential binutils cmake git ccache
   libeigen3-dev python3-dev python3-numpy python3-pytest python3-venv python3-pip libgtest-dev
   pybind11-dev  # 2.10: only for tests/python/test_numpy_mismatch.py; builds use PyPI's (pinned) pybind11
   blender xvfb xauth

@@ -27,10 +27,13 @@ from . import bake
 
 TICK_BUDGET = 0.1  # seconds of baking per tick (at least one frame), so the UI stays responsive
 # The sidebar gets the bake's box at its start, and Blender slides the panels below it into place over
-# 0.3 s from the box's first drawing, a step per redraw; until then the sub-panels' headers are drawn
-# over the panel, and a frame baked meanwhile (a second or more on a big mesh) held them there. So the
-# first frame waits for a drawing of the box this long after its first one (the panels are in place
-# then), or, where the box is not shown (the sidebar closed, another tab), for BOX_WAIT_LIMIT.
+# 0.3 s, a step per redraw, from the end of the box's first drawing (where it lays the panels out);
+# until then the sub-panels' headers are drawn over the panel, and a frame baked meanwhile (a second
+# or more on a big mesh) held them there. The box's layout code runs before that end, and on a slow
+# machine the drawing takes a good part of the 0.3 s, so the slide is timed from the box's second
+# drawing, which begins after the first has ended: the first frame waits for a drawing of the box this
+# long after that one (the panels are in place then), or, where the box is not shown (the sidebar
+# closed, another tab), for BOX_WAIT_LIMIT.
 PANELS_SETTLE = 0.35
 BOX_WAIT_LIMIT = 1.0
 SETTLE_WAIT_LIMIT = 10.0  # a box drawn once, then hidden: the bake goes on without waiting for the panels
@@ -81,9 +84,10 @@ class _BakeOperator:
     def panel_state(self):
         """(title, [(text, icon)], key hints) for the sidebar's box while the bake runs (ui.py)."""
         now = time.monotonic()
-        if self._box_drawn is None:
+        self._box_drawings += 1
+        if self._box_drawings == 2:
             self._box_drawn = now
-        elif now >= self._box_drawn + PANELS_SETTLE:
+        elif self._box_drawn is not None and now >= self._box_drawn + PANELS_SETTLE:
             self._panels_settled = True
         return ("Baking to a point cache", [("%s: %s" % (self._obj_name, self._progress_text()), 'FILE_CACHE')],
                 ("Esc: cancel (nothing is written)",))
@@ -144,7 +148,7 @@ class _BakeOperator:
         self._timer = context.window_manager.event_timer_add(TICK_SECONDS, window=context.window)
         self._started = self._next_tick = time.monotonic()
         self._panel_drawn = 0.0
-        self._box_drawn, self._panels_settled = None, False  # see PANELS_SETTLE
+        self._box_drawings, self._box_drawn, self._panels_settled = 0, None, False  # see PANELS_SETTLE
         context.window_manager.modal_handler_add(self)
         runs.start([self._job.obj], self)
         return {'RUNNING_MODAL'}
@@ -190,7 +194,7 @@ class _BakeOperator:
     def _panels_in_place(self, context):
         """May the bake take its frames, the sidebar's panels being in place (PANELS_SETTLE)?"""
         waited = time.monotonic() - self._started
-        if self._panels_settled or waited > SETTLE_WAIT_LIMIT or (self._box_drawn is None and waited > BOX_WAIT_LIMIT):
+        if self._panels_settled or waited > SETTLE_WAIT_LIMIT or (self._box_drawings == 0 and waited > BOX_WAIT_LIMIT):
             self._panels_settled = True
             return True
         redraw_sidebars(context)  # the slide goes on at each redraw
