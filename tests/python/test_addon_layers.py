@@ -13,7 +13,7 @@ ADDON = REPO / "python_addon" / "gauss_stylization"
 
 # Bottom first. The package's own __init__.py loads and registers everything and is left out.
 LAYERS = (
-    ("errors",),
+    ("errors", "app_handlers"),
     ("native",),
     ("settings",),
     ("mesh",),

@@ -18,6 +18,8 @@ while the add-on was off, follows today's rules (set Other Faces by hand to get 
 import bpy
 from bpy.props import IntProperty
 
+from .. import app_handlers
+
 VERSION = 1
 STAMP = "settings_version"
 
@@ -63,14 +65,8 @@ HANDLERS = (("load_post", _update_loaded_file), ("save_pre", _stamp_before_save)
 
 
 def register_handlers():
-    for name, handler in HANDLERS:
-        handlers = getattr(bpy.app.handlers, name)
-        if handler not in handlers:
-            handlers.append(handler)
+    app_handlers.add(HANDLERS)
 
 
 def unregister_handlers():
-    for name, handler in HANDLERS:
-        handlers = getattr(bpy.app.handlers, name)
-        if handler in handlers:
-            handlers.remove(handler)
+    app_handlers.remove(HANDLERS)
