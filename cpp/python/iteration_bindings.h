@@ -7,6 +7,8 @@
 // of it).
 #include <pybind11/pybind11.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <mutex>
 #include <sstream>
 #include <vector>
@@ -68,6 +70,17 @@ void bind_iteration(pybind11::class_<SolverWrapper>& cls) {
         std::lock_guard<std::mutex> lock(s.mutex());
         return s.core().held_vertices();
       }, "Vertices avoid_self_intersections held back in the last step or pin move (0 when it is off).");
+  cls.def_property_readonly("held_vertex_indices", [](SolverWrapper& s) {
+        std::vector<int> held;
+        {
+          std::lock_guard<std::mutex> lock(s.mutex());
+          held = s.core().held_vertex_indices();
+        }
+        py::array_t<int32_t> out(static_cast<py::ssize_t>(held.size()));
+        std::copy(held.begin(), held.end(), out.mutable_data());
+        return out;
+      }, "(held_vertices,) int32: which vertices avoid_self_intersections held back in the last step or\n"
+         "pin move, ascending (empty when it is off): where the run is held, e.g. to select them.");
   cls.def_property("acceleration", [](SolverWrapper& s) { return s.core().acceleration(); },
       [](SolverWrapper& s, bool on) {
         std::lock_guard<std::mutex> lock(s.mutex());

@@ -1,5 +1,6 @@
 """Select Crossing Faces: the faces of the active mesh that pass through another, selected, so that
-an artist checks a print before exporting it, with Avoid Self-Intersections or without."""
+an artist checks a print before exporting it, with Avoid Self-Intersections or without. Select Held
+Faces: during a live run, the faces where Avoid Self-Intersections holds the run back."""
 
 import bmesh
 import bpy
@@ -82,4 +83,41 @@ class OBJECT_OT_gauss_select_intersections(bpy.types.Operator):
         bmesh.update_edit_mesh(mesh)
 
 
-classes = (OBJECT_OT_gauss_select_intersections,)
+def _held_problem(context):
+    problem = _problem(context)
+    if problem:
+        return problem
+    obj = context.active_object
+    session = runs.session_of(obj)
+    if session is None:
+        return "Only while Stylize runs live on '%s'" % obj.name
+    if not session.solver.held_vertices:
+        return "Avoid Self-Intersections held no vertex back in the last step"
+    if not session.source.same_topology:
+        return "The modifiers change the faces of '%s': its own faces cannot be selected" % obj.name
+    return None
+
+
+class OBJECT_OT_gauss_select_held(bpy.types.Operator):
+    """Select the faces where Avoid Self-Intersections holds the live run back (those around the
+    vertices it held in the last step); Edit Mode shows them once the run is kept"""
+    bl_idname = "object.gauss_select_held"
+    bl_label = "Select Held Faces"
+    bl_options = {'INTERNAL'}  # not registered: a live run counts registered operators as edits
+
+    @classmethod
+    def poll(cls, context):
+        return poll_result(cls, _held_problem(context))
+
+    def execute(self, context):
+        obj = context.active_object
+        session = runs.session_of(obj)
+        held = session.solver.held_vertex_indices
+        polygons = crossings.polygons_with_vertices(session.arrays, held)
+        crossings.select_polygons(obj.data, polygons)
+        self.report({'INFO'}, "Avoid Self-Intersections holds %d vertices back; their %d faces are selected"
+                    % (len(held), len(polygons)))
+        return {'FINISHED'}
+
+
+classes = (OBJECT_OT_gauss_select_intersections, OBJECT_OT_gauss_select_held)

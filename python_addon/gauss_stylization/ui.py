@@ -178,6 +178,9 @@ class VIEW3D_PT_gauss_solver(GaussSubPanel, bpy.types.Panel):
         draw_rows(split_column(self.layout), obj, obj.gauss_stylization, schema.OBJECT, Panel.SOLVER)
         # Next to Avoid Self-Intersections: check a result (or an input) for a print, with it or without.
         self.layout.operator("object.gauss_select_intersections", icon='SELECT_INTERSECT')
+        session = runs.session_of(obj)
+        if session is not None and session.solver.held_vertices:  # where the guard holds the live run
+            self.layout.operator("object.gauss_select_held", icon='RESTRICT_SELECT_OFF')
 
 
 classes = (OBJECT_OT_gauss_run_details, GAUSS_UL_styles, GAUSS_UL_normals,

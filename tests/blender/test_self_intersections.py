@@ -96,10 +96,25 @@ def test_a_run_the_guard_stops_says_held_back_and_not_converged(addon):
             assert live.panel_title() == "Held back"
             assert any("held back" in line[0] and line[1] == 'ERROR' for line in live.panel_lines())
             assert helpers.crossing_pairs(obj) == 0
+            # Where: Select Held Faces selects the faces around the vertices the guard held.
+            assert not bpy.ops.object.gauss_select_held.poll()  # only for an object in a live run
+            addon.run.runs.start([obj], live)
+            try:
+                assert bpy.ops.object.gauss_select_held() == {'FINISHED'}
+            finally:
+                addon.run.runs.forget(live)
+            held = set(session.solver.held_vertex_indices.tolist())
+            around = {p.index for p in obj.data.polygons if held & set(p.vertices)}
+            assert around and _selected_polygons(obj) == around
         else:
             assert session.converged and not session.held_back
             assert "Converged" in text and "held back" not in text, text
             assert helpers.crossing_pairs(obj) > 0
+            addon.run.runs.start([obj], live)
+            try:
+                assert not bpy.ops.object.gauss_select_held.poll()  # nothing held
+            finally:
+                addon.run.runs.forget(live)
         steps = session.steps
         live.tick(budget=1e9)  # at rest: a tick does not step it
         assert session.steps == steps

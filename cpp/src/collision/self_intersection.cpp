@@ -241,6 +241,7 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
   if (stages == 1) {
     limit_stage(safe, X);
     take_slid_pairs();
+    last_staged_ = false;
     return last_held_;
   }
   if (move_.size() != X.size()) {
@@ -265,6 +266,7 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
     denied_ = std::max(denied_, (safe[v] + stages * move_[v] - X[v]).cwiseAbs().maxCoeff());
   }
   last_held_ = static_cast<int>(held_in_any_.size());
+  last_staged_ = true;
   return last_held_;
 }
 

@@ -1,5 +1,7 @@
 // GaussSolver's read-outs: the current vertices in the caller's numbering and frame, and the energies.
 // Not on a step's path: the energies recompute what they need.
+#include <algorithm>
+
 #include <Eigen/Dense>
 
 #include "gauss/solver/closest_rotation.h"
@@ -27,6 +29,17 @@ void GaussSolver::write_vertices(T* out) const {
     if (guard_ && X_[new_of_old_[pinned_input_[i]]] != Vector3d((pin_targets_[i] - center_) / scale_)) continue;
     for (int k = 0; k < 3; ++k) out[3 * pinned_input_[i] + k] = static_cast<T>(pin_targets_[i][k]);
   }
+}
+
+std::vector<int> GaussSolver::held_vertex_indices() const {
+  std::vector<int> found;
+  if (!guard_ || guard_->last_held() == 0) return found;
+  std::vector<int> old_of_new(new_of_old_.size());
+  for (size_t old = 0; old < new_of_old_.size(); ++old) old_of_new[new_of_old_[old]] = static_cast<int>(old);
+  found.reserve(guard_->last_held_vertices().size());
+  for (int v : guard_->last_held_vertices()) found.push_back(old_of_new[v]);
+  std::sort(found.begin(), found.end());
+  return found;
 }
 
 void GaussSolver::copy_vertices(double* out) const { write_vertices(out); }

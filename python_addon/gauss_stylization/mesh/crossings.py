@@ -80,3 +80,11 @@ def select_polygons(mesh, polygons):
     mesh.edges.foreach_set("select", edges)
     mesh.polygons.foreach_set("select", chosen)
     mesh.update()
+
+
+def polygons_with_vertices(arrays, vertices):
+    """Sorted (#S,) int32 indices of the polygons of ``arrays`` (a MeshArrays) with a corner at any of
+    ``vertices``."""
+    at = np.zeros(arrays.num_vertices, bool)
+    at[np.asarray(vertices, np.int64)] = True
+    return np.unique(arrays.corner_polygon[at[arrays.corner_vertex]]).astype(np.int32)

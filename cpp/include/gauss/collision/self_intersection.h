@@ -76,8 +76,9 @@ class SelfIntersectionGuard {
   // vertices held back (0: X was left as it was).
   int limit(const std::vector<Eigen::Vector3d>& safe, std::vector<Eigen::Vector3d>& X);
 
-  // Vertices held back by the last limit().
+  // Vertices held back by the last limit(): how many, and which (in the topology's numbering, each once).
   int last_held() const { return last_held_; }
+  const std::vector<int>& last_held_vertices() const { return last_staged_ ? held_in_any_ : held_; }
   // The longest move (largest coordinate) the last limit() took from a held vertex: how far the run
   // would have gone on without the guard.
   double last_denied() const { return denied_; }
@@ -128,6 +129,7 @@ class SelfIntersectionGuard {
   std::mutex found_mutex_;                // contacts() fills found_ from several threads
   std::vector<int> held_in_any_;          // a staged limit(): vertices held in some stage
   int last_held_ = 0;
+  bool last_staged_ = false;  // the last limit() took stages: its vertices are held_in_any_, else held_
   double denied_ = 0;
 };
 

@@ -119,6 +119,8 @@ class GaussSolver {
   bool avoid_self_intersections() const { return guard_ != nullptr; }
   // Vertices the guard held back in the last step or pin move (0 when it is off).
   int held_vertices() const { return guard_ ? guard_->last_held() : 0; }
+  // Which: held_vertices() vertex indices (caller's numbering, ascending); empty when the guard is off.
+  std::vector<int> held_vertex_indices() const;
   // The run has stopped moving because the guard holds it, not because it converged: the last step
   // moved less than the tolerance, but without the guard its held vertices would have moved more.
   bool held_back() const { return last_reldv() < tolerance_ && denied_reldv_ >= tolerance_; }
