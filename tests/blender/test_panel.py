@@ -148,14 +148,15 @@ def test_convergence_text(addon, change, tolerance, text):
 def test_the_pin_hint_shows_only_where_a_run_has_a_pin_group(addon):
     obj = helpers.suzanne(levels=0)
     helpers.add_slot(obj, 'CUBE')
-    run = addon.operators.OBJECT_OT_gauss_stylize.key_hints
     live = helpers.live_run([obj])
+    pin_hint = addon.run.live_run.PIN_HINT
     try:
-        holder = type("Run", (), {"live": live})()
-        assert addon.operators.PIN_HINT not in run(holder)
+        assert pin_hint not in live.key_hints() and pin_hint not in live.status_line({})
         helpers.add_group(obj, "Pins", range(10))
         obj.gauss_stylization.pin_group = "Pins"
-        assert addon.operators.PIN_HINT in run(holder)
+        assert pin_hint in live.key_hints() and pin_hint in live.panel_state()[2]
+        assert live.status_line({"note": "a handler's note"}).endswith(
+            "  |  a handler's note  |  " + "  |  ".join(live.key_hints()))
     finally:
         live.cancel()
 

@@ -1,7 +1,9 @@
 """The objects of one live run: their set-up on a worker thread, then solver steps at every tick.
 
-Nothing here touches the interface; the modal operator (operators.py) reports
-what ``finish_setup()`` and ``tick()`` return and shows ``status_text()``.
+Nothing here touches the interface: the modal operator (operators.py) is the event loop, which
+reports what ``finish_setup()`` and ``tick()`` return and shows what this class words for it: the
+status line (``status_line()``), the sidebar box (``panel_state()``) and, once kept, the values its
+redo panel repeats (``redo_values()``).
 
 A tick gives every object at most one step, in turn, until the tick's time
 budget is used; the next tick goes on with the object after the last one
@@ -17,7 +19,8 @@ import time
 from collections import deque
 
 from ..errors import SettingsError
-from ..settings.settings_io import to_dict
+from ..settings.settings_io import objects_to_json, to_dict
+from .pin_targets import targets_json
 from .progress import convergence_text, progress_text
 from .session import TIMINGS_KEPT, Session
 from .solver_setup import SolverSetup
@@ -26,6 +29,12 @@ from .targets import TITLE
 TICK_SECONDS = 0.01  # the timer of a run in the UI (a Stylize, a bake): how often it gets a tick
 TICK_BUDGET = 1.0 / 30.0  # seconds of solver steps per tick before the rest wait for the next one
 CONVERGED = "Converged"  # status bar and panel: the object is not stepped until something changes
+KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel")  # what modal_events does with keys
+PIN_HINT = "Drag a pin: move its handle"  # what handle_tool does, where a run has pins
+SETUP_HINT = "Esc: cancel"
+# A file saved during a run holds the meshes as they were before it (what Esc restores).
+SAVED_NOTE = "Saved without this run (Enter keeps it)"
+SAVED_REPORT = "Saved %s with the meshes as before Stylize: the live run goes on, and is saved once kept"
 
 
 class TickOutcome:
@@ -267,3 +276,29 @@ class LiveRun:
                 if towards:
                     lines.append((towards, 'BLANK1'))
         return lines
+
+    # -- what the Stylize operator shows of the run, and what its redo panel repeats --------------
+
+    def key_hints(self):
+        """The keys that act on the run now; the pin hint only where an object has a Pin Group."""
+        if self.preparing:
+            return (SETUP_HINT,)
+        pinned = any(session.object_alive() and session.obj.gauss_stylization.pin_group
+                     for session in self.sessions)
+        return KEY_HINTS + (PIN_HINT,) if pinned else KEY_HINTS
+
+    def status_line(self, notes):
+        """The header and status bar: status_text(), the notes ({name: text} of event handlers), the keys."""
+        notes = "".join("  |  " + note for note in notes.values() if note)
+        return self.status_text() + notes + "  |  " + "  |  ".join(self.key_hints())
+
+    def panel_state(self):
+        """(title, [(text, icon)], key hints) for the sidebar's box while the run goes on (ui.py)."""
+        return self.panel_title(), self.panel_lines(), self.key_hints()
+
+    def redo_values(self, max_steps):
+        """{operator property: value} of a kept run, so that the redo panel repeats it: its steps (at
+        most max_steps), the settings it ended with and where it left dragged pins."""
+        return {"iterations": min(self.steps, max_steps),
+                "settings_json": objects_to_json([session.obj for session in self.sessions]),
+                "pin_targets": targets_json(self.sessions)}

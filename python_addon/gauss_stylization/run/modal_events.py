@@ -8,14 +8,8 @@ so navigation, the sidebar and every other editor keep working during a run.
 A handler is ``handler(run, context, event)`` and returns None (not its
 business) or what modal() returns: {'RUNNING_MODAL'} to take the event,
 {'PASS_THROUGH'} to give it to Blender after all, or the result of
-``run.end(context, keep)`` when it ends the run. ``run`` is the modal operator:
-
-    run.end(context, keep, why=None) -> {'FINISHED'} / {'CANCELLED'}: keep or restore all objects
-    run.preparing           -> True while the solvers are still being set up
-    run.live.sessions       -> the session.Session of each object in the run
-    run.scratch             -> dict for handlers' own state during this run, by handler name
-    run.notes               -> dict of texts the status bar shows after the run's own, by name
-    run.show_status(context)   redraws the header and status bar (after a handler changed notes)
+``run.end(context, keep)`` when it ends the run. ``run`` is the modal operator, a
+run_interface.StylizeRun (end, preparing, sessions, scratch, notes, show_status...).
 
 Another feature adds its handler with ``add(handler, order, on_end)`` when it
 registers (and removes it when it unregisters); e.g. pin handles take presses
