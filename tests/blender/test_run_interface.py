@@ -21,7 +21,9 @@ def problems(cls, protocol):
     """How ``cls`` falls short of ``protocol`` (empty: it implements it)."""
     found = []
     for name, wanted in _members(protocol).items():
-        have = inspect.getattr_static(cls, name, None)
+        have = inspect.getattr_static(cls, name, None)  # statically, so that no property runs
+        if have is None and hasattr(cls, "bl_rna") and name in cls.bl_rna.functions:
+            continue  # bpy.types.Operator's own (report): an RNA function, not a Python attribute
         if have is None:
             found.append("%s has no %s" % (cls.__name__, name))
         elif isinstance(wanted, property):
