@@ -258,11 +258,14 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         self.stop(context, keep=False)
 
     def show_status(self, context, clear=False):
-        """Write the header and status bar text (event handlers call it after changing notes)."""
+        """Write the status bar text (event handlers call it after changing notes). The viewport's
+        header keeps its menus, its mode menu being a way to Weight Paint during a run, except while a
+        handler has the keys (a handle drag): then it says what they do, where the artist looks."""
         text = None if clear else self.live.status_line(self.notes)
         area = existing_area(self._area_pointer)
         if area is not None:
-            area.header_text_set(text)
+            keys_taken = any(isinstance(note, modal_events.KeysNote) for note in self.notes.values())
+            area.header_text_set(text if keys_taken else None)
         if context.workspace is not None:
             context.workspace.status_text_set(text)
 

@@ -20,7 +20,7 @@ LAYERS = (
     ("view",),
     ("run",),
     ("handles", "sphere", "bake"),
-    ("operators", "slot_operators"),
+    ("operators", "slot_operators", "crossing_operators"),
     ("ui",),
 )
 

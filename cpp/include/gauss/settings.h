@@ -114,8 +114,8 @@ inline constexpr Option avoid_self_intersections{
     "avoid_self_intersections", false,
     "No step (nor a move of the pins) brings two faces into contact that were not in contact when it was "
     "switched on (or at reset() and set_vertices()): vertices that would are held back (held_vertices), so the "
-    "result never passes through itself where the input did not. Its cost: docs/performance.md, 'Avoiding "
-    "self-intersections'."};
+    "result never passes through itself where the input did not. Each step takes longer (how much: "
+    "docs/performance.md, \"The guard's cost\")."};
 
 inline constexpr const Option* options[] = {&keep_volume, &acceleration, &avoid_self_intersections};
 
@@ -206,7 +206,11 @@ constexpr auto solver_readouts() {
               "or vertices: a change leaves the run unconverged until a step says otherwise."),
       readout("converged", &Solver::converged,
               "last_reldv < tolerance: the last step moved the mesh by less than the tolerance, and nothing\n"
-              "changed since."),
+              "changed since; False while held_back."),
+      readout("held_back", &Solver::held_back,
+              "The run stopped moving because avoid_self_intersections holds it, not because it converged: the\n"
+              "last step moved less than the tolerance, but its held vertices (held_vertices) would have moved\n"
+              "more without the guard. step_until stops here as at convergence."),
       readout("held_vertices", &Solver::held_vertices,
               "Vertices avoid_self_intersections held back in the last step or pin move (0 when it is off)."),
       readout("step_count", &Solver::step_count, "Steps since the set-up or the last reset()."),

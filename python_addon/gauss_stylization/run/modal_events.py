@@ -9,7 +9,8 @@ A handler is ``handler(run, context, event)`` and returns None (not its
 business) or what modal() returns: {'RUNNING_MODAL'} to take the event,
 {'PASS_THROUGH'} to give it to Blender after all, or the result of
 ``run.end(context, keep)`` when it ends the run. ``run`` is the modal operator, a
-run_interface.StylizeRun (end, preparing, sessions, scratch, notes, show_status...).
+run_interface.StylizeRun (end, preparing, sessions, scratch, notes, show_status...);
+a KeysNote in run.notes takes the place of the run's texts while it is set.
 
 Another feature adds its handler with ``add(handler, order, on_end)`` when it
 registers (and removes it when it unregisters); e.g. pin handles take presses
@@ -20,10 +21,11 @@ before the meshes are kept or restored.
 """
 
 from ..view.viewport import drag_distance_exceeded, free_viewport_at
+from .live_run import KeysNote  # noqa: F401 (handlers reach it here: modal_events.KeysNote)
 from .runs import UNDO_CANCELLED
 
 DRAGS = 50      # a drag in progress (a pin handle): its Esc puts it back, its Enter drops it
-KEYS = 100      # Enter, Esc, Ctrl+Z, Ctrl+Shift+Z, Tab
+KEYS = 100      # Enter, Esc, Ctrl+Z, Ctrl+Shift+Z, Tab (not Ctrl+Tab)
 OVERLAYS = 150  # things drawn over the viewport that take presses (the Gauss sphere), over the pins
 HANDLES = 200   # for things in the viewport that take presses and drags (pin handles)
 CLICKS = 300    # a plain click in the free viewport keeps, a right-click cancels
@@ -64,8 +66,9 @@ def run_ended(run, context, keep):
 # -- the run's own handlers ----------------------------------------------------------------
 
 def keys(run, context, event):
-    """Enter keeps, Esc cancels, so do Ctrl+Z and Ctrl+Shift+Z (saying so); no mode switch under
-    a run. During the set-up only Esc and undo act (there is nothing to keep yet)."""
+    """Enter keeps, Esc cancels, so do Ctrl+Z and Ctrl+Shift+Z (saying so); Tab (Edit Mode, which
+    would end the run) is blocked, Ctrl+Tab goes on to the mode pie. During the set-up only Esc and
+    undo act (there is nothing to keep yet)."""
     if event.value != 'PRESS':
         return None
     if event.type == 'ESC':
@@ -76,7 +79,7 @@ def keys(run, context, event):
         return None
     if event.type in {'RET', 'NUMPAD_ENTER'}:
         return run.end(context, keep=True)
-    if event.type == 'TAB':
+    if event.type == 'TAB' and not event.ctrl:  # Ctrl+Tab: the mode pie, the way to Weight Paint
         return {'RUNNING_MODAL'}
     return None
 
