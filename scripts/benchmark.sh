@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs gauss_bench on the reference meshes with 2 threads and prints a Markdown table, one row
+# Runs gauss_bench on the reference meshes of docs/performance.md (the bunny and the armadillo) with 2 threads and prints a Markdown table, one row
 # per mesh and method: the Gauss method (cube style, lambda 4, sigma 4, 1 ADMM round) and the cubic
 # method (cube, its default lambda 0.2). Per row: the medians of a 50-step run, then runs until the
 # default tolerance (reldV < 1e-3, at most 2000 steps), plain and accelerated (--acceleration off /

@@ -67,7 +67,7 @@ BLENDER_FOR_PYTHON = {
 }
 EXTENSIONS_SINCE = (4, 2)  # the first Blender that installs extensions (blender_manifest.toml)
 # Blender's extension platforms this project builds wheels for (release.yml), and the name each has in
-# a classic zip's file name (Python's platform tags, as before extensions existed).
+# a classic zip's file name (Python's platform tags, which Blenders older than extensions know).
 PLATFORMS = {"linux-x64": "linux_x86_64", "windows-x64": "win_amd64",
              "macos-arm64": "macosx_arm64", "macos-x64": "macosx_x86_64"}
 # gauss_core-0.1.0-cp311-cp311-manylinux_2_28_x86_64.whl (no build tag)

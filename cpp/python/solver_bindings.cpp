@@ -1,17 +1,22 @@
 // Bindings of gauss_core.Solver: the wrapper that owns a GaussSolver (copies inputs while the GIL is
 // held, releases it for set-ups and steps, and serializes every use of the solver with a mutex), then
-// its Python interface. Run control (step_until, convergence, warm starts) is added by
-// iteration_bindings.h.
+// its Python interface. Every setting (a keyword of Solver() and a property) and every scalar read-out
+// comes from the tables at the end of settings.h, never by hand here; run control (step_until, warm
+// starts) is added by iteration_bindings.h.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "bound_style.h"
@@ -43,37 +48,27 @@ std::shared_ptr<gauss::Progress> read_progress(const py::object& progress) {
 class Solver {
  public:
   // Inputs are copied while the GIL is held; the set-up itself runs without it, so another Python
-  // thread (Blender's UI timer) can watch or cancel the progress meanwhile.
+  // thread (Blender's UI timer) can watch or cancel the progress meanwhile. The settings are the
+  // defaults until the caller's are applied (bind_constructor).
   Solver(const py::object& V, const py::object& F, const py::object& pinned, const py::object& pin_positions,
-         double lam, int admm_iterations, const std::string& method, double cubic_lambda, double tolerance,
-         bool keep_volume, bool acceleration, bool avoid_self_intersections, const py::object& progress) {
-    const gauss::Method chosen = parse_method(method);  // refused before the set-up's cost
-    settings::cubic_lambda.check(cubic_lambda);
-    settings::tolerance.check(tolerance);
+         const py::object& progress) {
     std::vector<double> v = read_matrix<double>(V, 3, "V", false);
     std::vector<int64_t> f = read_matrix<int64_t>(F, 3, "F", true);
     std::vector<int64_t> pins;
     std::vector<double> targets;
     read_pins(pinned, pin_positions, pins, targets);
-    settings::admm_iterations.check(admm_iterations);
     const std::shared_ptr<gauss::Progress> watcher = read_progress(progress);
     {
       py::gil_scoped_release release;
       const int nV = static_cast<int>(v.size() / 3);
       try {
         solver_ = std::make_unique<GaussSolver>(v.data(), nV, f.data(), static_cast<int>(f.size() / 3), pins,
-                                                targets.empty() ? nullptr : targets.data(), lam, watcher.get());
+                                                targets.empty() ? nullptr : targets.data(),
+                                                settings::lambda.default_value, watcher.get());
       } catch (const std::bad_alloc&) {
         throw gauss::OutOfMemory("not enough memory to set up a mesh of " + std::to_string(nV) + " vertices");
       }
     }
-    solver_->set_admm_iterations(admm_iterations);
-    solver_->set_cubic_lambda(cubic_lambda);
-    solver_->set_method(chosen);
-    solver_->set_tolerance(tolerance);
-    solver_->set_keep_volume(keep_volume);
-    solver_->set_acceleration(acceleration);
-    solver_->set_avoid_self_intersections(avoid_self_intersections);
     styles_.push_back(make_style(settings::default_preset, gauss::default_style()));
   }
 
@@ -204,38 +199,140 @@ class Solver {
   std::mutex mutex_;
 };
 
+// --- The settings and read-out tables of settings.h, as keywords and properties. ---
+
+constexpr auto kSettings = settings::solver_settings<GaussSolver>();
+constexpr auto kReadouts = settings::solver_readouts<GaussSolver>();
+
+// The type Python passes and gets for a setting of the solver's type Value: the method travels by name.
+template <class Value>
+struct PythonValue {
+  using type = Value;
+  static Value read(const Value& v) { return v; }
+  static py::object write(Value v) { return py::cast(v); }
+};
+template <>
+struct PythonValue<gauss::Method> {
+  using type = std::string;
+  static gauss::Method read(const std::string& name) { return parse_method(name); }
+  static py::object write(gauss::Method m) { return py::str(settings::method_names[static_cast<int>(m)]); }
+};
+template <class Row>
+using PythonOf = PythonValue<std::remove_cv_t<std::remove_reference_t<decltype((std::declval<GaussSolver&>().*
+                                                                                std::declval<Row>().get)())>>>;
+
+// A keyword's default in its Python type, and the check that refuses a value before the set-up's cost
+// (the setter checks again).
+template <class Value>
+Value default_of(const gauss::Setting& s) { return static_cast<Value>(s.default_value); }
+template <class Value>
+bool default_of(const gauss::Option& o) { return o.default_value; }
+template <class Value>
+std::string default_of(const gauss::Choice& c) { return c.default_value; }
+inline void check_value(const gauss::Setting& s, double v) { s.check(v); }
+inline void check_value(const gauss::Option&, bool) {}
+inline void check_value(const gauss::Choice&, const std::string& name) { parse_method(name); }
+
+// help() text of a setting: its doc, then where its default (and range) are.
+std::string setting_doc(const gauss::Setting& s) {
+  return std::string(s.doc) + "\nDefault: DEFAULTS['" + s.name + "']; range: LIMITS['" + s.name + "'].";
+}
+std::string setting_doc(const gauss::Option& o) {
+  return std::string(o.doc) + "\nDefault: DEFAULTS['" + o.name + "'].";
+}
+std::string setting_doc(const gauss::Choice& c) {
+  return std::string(c.doc) + "\nDefault: DEFAULTS['" + c.name + "'].";
+}
+
+// pybind11 keeps the char pointers of docs it is given; these live as long as the module.
+const char* kept(std::string text) {
+  static std::deque<std::string> texts;
+  texts.push_back(std::move(text));
+  return texts.back().c_str();
+}
+
+// Solver(V, F, pinned=None, pin_positions=None, *, <every setting row>=<its default>, progress=None).
+template <size_t... I>
+void bind_constructor(py::class_<Solver>& cls, std::index_sequence<I...>) {
+  cls.def(py::init([](const py::object& V, const py::object& F, const py::object& pinned,
+                      const py::object& pin_positions,
+                      const typename PythonOf<std::tuple_element_t<I, decltype(kSettings)>>::type&... values,
+                      const py::object& progress) {
+            (check_value(*std::get<I>(kSettings).setting, values), ...);
+            auto solver = std::make_unique<Solver>(V, F, pinned, pin_positions, progress);
+            GaussSolver& core = solver->core();
+            using Rows = decltype(kSettings);
+            ((core.*std::get<I>(kSettings).set)(PythonOf<std::tuple_element_t<I, Rows>>::read(values)), ...);
+            return solver;
+          }),
+          py::arg("V"), py::arg("F"), py::arg("pinned") = py::none(), py::arg("pin_positions") = py::none(),
+          py::kw_only(),
+          (py::arg(std::get<I>(kSettings).setting->name) =
+               default_of<typename PythonOf<std::tuple_element_t<I, decltype(kSettings)>>::type>(
+                   *std::get<I>(kSettings).setting))...,
+          py::arg("progress") = py::none());
+}
+
+template <class Row>
+void bind_setting(py::class_<Solver>& cls, const Row& row) {
+  using Python = PythonOf<Row>;
+  const auto get = row.get;
+  const auto set = row.set;
+  cls.def_property(
+      row.setting->name,
+      [get](Solver& s) {
+        std::lock_guard<std::mutex> lock(s.mutex());
+        return Python::write((s.core().*get)());
+      },
+      [set](Solver& s, const typename Python::type& value) {
+        const auto v = Python::read(value);  // a bad name is refused before waiting for the lock
+        std::lock_guard<std::mutex> lock(s.mutex());
+        (s.core().*set)(v);
+      },
+      kept(setting_doc(*row.setting)));
+}
+
+template <class Row>
+void bind_readout(py::class_<Solver>& cls, const Row& row) {
+  const auto get = row.get;
+  cls.def_property_readonly(
+      row.name,
+      [get](Solver& s) {
+        std::lock_guard<std::mutex> lock(s.mutex());
+        return (s.core().*get)();
+      },
+      row.doc);
+}
+
+// The class doc's list of settings, from the table.
+std::string settings_summary() {
+  std::string names;
+  std::apply([&](const auto&... row) { ((names += std::string(names.empty() ? "" : ", ") + row.setting->name), ...); },
+             kSettings);
+  return names;
+}
+
 }  // namespace
 
 void bind_solver(py::module_& m) {
-  py::class_<Solver>(m, "Solver", R"doc(
+  py::class_<Solver> cls(m, "Solver", kept(R"doc(
 Gauss stylization of one triangle mesh. The constructor does the set-up (normalization, cotangent
 weights, topology, sparse Cholesky factorization); step() runs Algorithm 1 of the paper.
 
-Solver(V, F, pinned=None, pin_positions=None, lam, admm_iterations, method, cubic_lambda, tolerance,
-       keep_volume, acceleration, avoid_self_intersections, progress=None)
-  (defaults and ranges: DEFAULTS, LIMITS)
+Solver(V, F, pinned=None, pin_positions=None, *, SETTING=DEFAULTS[SETTING]..., progress=None)
   V: (#V, 3) float32/float64 coordinates.  F: (#F, 3) int32/int64 triangle indices.
   pinned: (#P,) vertex indices that keep their position; pin_positions: (#P, 3) targets
-  (default: their rest positions).  lam: lambda.  admm_iterations: ADMM rounds per step.
-  method: one of METHODS, any case ('gauss': this paper; 'cubic': Cubic Stylization, whose strength is
-  cubic_lambda, scaled per face by its style's mu and turned by its style's rotation).
-  tolerance: the reldV below which `converged` is True.  keep_volume, acceleration,
-  avoid_self_intersections: see the properties.
+  (default: their rest positions).
+  The settings, keyword-only, each also a property of that name (see its doc; defaults: DEFAULTS,
+  ranges: LIMITS): )doc" + settings_summary() + R"doc(.
   progress: a gauss_core.Progress to watch or cancel the set-up from another thread (the
   set-up releases the GIL); a cancelled set-up raises gauss_core.Cancelled.
 Raises MemoryError if the mesh's factorization would not fit in the available memory.
-By default one style, DEFAULTS['preset'] with the default sigma and mu, applies to every face.)doc")
-      .def(py::init<const py::object&, const py::object&, const py::object&, const py::object&, double, int,
-                    const std::string&, double, double, bool, bool, bool, const py::object&>(),
-           py::arg("V"), py::arg("F"), py::arg("pinned") = py::none(), py::arg("pin_positions") = py::none(),
-           py::arg("lam") = settings::lambda.default_value,
-           py::arg("admm_iterations") = static_cast<int>(settings::admm_iterations.default_value),
-           py::arg("method") = settings::default_method, py::arg("cubic_lambda") = settings::cubic_lambda.default_value,
-           py::arg("tolerance") = settings::tolerance.default_value,
-           py::arg("keep_volume") = settings::keep_volume.default_value,
-           py::arg("acceleration") = settings::acceleration.default_value,
-           py::arg("avoid_self_intersections") = settings::avoid_self_intersections.default_value,
-           py::arg("progress") = py::none())
+By default one style, DEFAULTS['preset'] with the default sigma and mu, applies to every face.)doc"));
+  bind_constructor(cls, std::make_index_sequence<std::tuple_size_v<decltype(kSettings)>>{});
+  std::apply([&](const auto&... row) { (bind_setting(cls, row), ...); }, kSettings);
+  std::apply([&](const auto&... row) { (bind_readout(cls, row), ...); }, kReadouts);
+  cls
       .def("set_styles", &Solver::set_styles, py::arg("styles"),
            "Replaces the style list (takes effect at the next step, no re-factorization).")
       .def("set_style", &Solver::set_style, py::arg("index"), py::arg("style"), "Replaces one style.")
@@ -258,50 +355,19 @@ By default one style, DEFAULTS['preset'] with the default sigma and mu, applies 
            "sit at their targets at once, the rest of the mesh follows at the next step.")
       .def_property_readonly("pinned", &Solver::pinned, "(#P,) int64 copy of the pinned vertex indices.")
       .def_property_readonly("pin_positions", &Solver::pin_positions, "(#P, 3) float64 copy of the pins' targets.")
-      .def_property("lam", [](Solver& s) { return s.core().lambda(); },
-                    [](Solver& s, double l) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_lambda(l); },
-                    "lambda: how strongly edges follow the preferred normals (range: LIMITS['lam']).\n"
-                    "Setting it does not re-factor.")
-      .def_property("admm_iterations", [](Solver& s) { return s.core().admm_iterations(); },
-                    [](Solver& s, int n) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_admm_iterations(n); },
-                    "ADMM rounds per step (range: LIMITS['admm_iterations']).")
-      .def_property("method", [](Solver& s) { return settings::method_names[static_cast<int>(s.core().method())]; },
-                    [](Solver& s, const std::string& m) { const gauss::Method chosen = parse_method(m);
-                      std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_method(chosen); },
-                    "The next step's method (METHODS); switching keeps pins, styles and the factorization.")
-      .def_property("cubic_lambda", [](Solver& s) { return s.core().cubic_lambda(); },
-                    [](Solver& s, double l) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().set_cubic_lambda(l); },
-                    "lambda of the cubic method (range: LIMITS['cubic_lambda']).")
-      .def_property_readonly("cubic_admm_iterations", [](Solver& s) { return s.core().cubic_admm_iterations(); },
-                             "ADMM iterations of the last cubic step, summed over the vertices.")
-      .def_property_readonly("cubic_energy", [](Solver& s) { std::lock_guard<std::mutex> lock(s.mutex());
-                               return s.core().cubic_energy(); }, "sum_i lambda_i |Q_i^T R_i n_i|_1 of the last cubic step.")
       .def("step", &Solver::step, py::arg("n") = 1, "Runs n iterations (releases the GIL).")
       .def("reset", [](Solver& s) { std::lock_guard<std::mutex> lock(s.mutex()); s.core().reset(); },
            "Current vertices := rest vertices; step_count := 0.")
       .def_property_readonly("vertices", &Solver::vertices, "(#V, 3) float64 copy of the current vertices.")
       .def("vertices_into", &Solver::vertices_into, py::arg("out"),
            "Writes the current vertices into a C-contiguous float32/float64 array of shape (#V, 3) or (3*#V,).")
-      .def_property_readonly("arap_energy", [](Solver& s) {
-             std::lock_guard<std::mutex> lock(s.mutex());
-             return s.core().arap_energy();
-           }, "E_ARAP of the current mesh (normalized frame).")
-      .def_property_readonly("g_energy", [](Solver& s) {
-             std::lock_guard<std::mutex> lock(s.mutex());
-             return s.core().g_energy();
-           }, "E_g = sum over styled faces of g(n_f).")
-      .def_property_readonly("step_count", [](Solver& s) { return s.core().step_count(); })
-      .def_property_readonly("factorization_count", [](Solver& s) { return s.core().factorization_count(); })
-      .def_property_readonly("num_vertices", [](Solver& s) { return s.core().num_vertices(); })
-      .def_property_readonly("num_faces", [](Solver& s) { return s.core().num_input_faces(); })
       .def_property_readonly("last_step_ms", [](Solver& s) {
              const gauss::StepTimings& t = s.core().last_timings();
              py::dict d;
              d["faces"] = t.faces; d["rotations"] = t.rotations; d["admm"] = t.admm; d["rhs"] = t.rhs; d["solve"] = t.solve; d["threads"] = t.threads;
              return d;
            }, "Milliseconds per phase of the last step.");
-  py::class_<Solver> solver_class = py::reinterpret_borrow<py::class_<Solver>>(m.attr("Solver"));
-  gauss_python::bind_iteration(solver_class);
+  gauss_python::bind_iteration(cls);
 }
 
 }  // namespace gauss_python

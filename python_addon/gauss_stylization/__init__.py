@@ -23,7 +23,7 @@ MODULES = (
     "settings.validation", "settings.paint_curve", "settings.styles",
     "mesh.mesh_io", "mesh.crossings", "mesh.source", "mesh.cache_modifier", "mesh.output", "mesh.rest_store",
     "view.viewport", "view.gpu_compat", "view.sidebar",
-    "run.undo_guard", "run.runs", "run.progress", "run.solver_setup", "run.session", "run.targets",
+    "run.run_interface", "run.undo_guard", "run.runs", "run.progress", "run.solver_setup", "run.session", "run.targets",
     "run.pin_targets", "run.live_run", "run.scripted_run", "run.modal_events",
     "handles.handles", "handles.handle_tool",
     "sphere.gauss_sphere", "sphere.directions", "sphere.orientation", "sphere.surface", "sphere.sphere_overlay",

@@ -3,9 +3,11 @@
 Stylize acts on the active object and every other selected mesh (targets.py).
 Invoked from the interface it runs live: the solvers are set up on a worker
 thread (solver_setup.py) while a timer polls them, then each tick steps the
-objects (live_run.py); events go through modal_events.py. From a script, in
-background mode and from the redo panel it runs a fixed number of steps
-(scripted_run.py). Either way a kept run is one undo step.
+objects (live_run.py); events go through modal_events.py. The operator is the
+event loop only: what it shows and what its redo panel repeats are worded by
+live_run.LiveRun, and it is a run as run_interface.StylizeRun says. From a
+script, in background mode and from the redo panel it runs a fixed number of
+steps (scripted_run.py). Either way a kept run is one undo step.
 """
 
 import time
@@ -16,8 +18,7 @@ from bpy.props import StringProperty
 from .errors import SettingsError
 from .mesh import rest_store
 from .run import modal_events, runs, scripted_run
-from .run.live_run import TICK_SECONDS, LiveRun
-from .run.pin_targets import targets_json
+from .run.live_run import SAVED_NOTE, SAVED_REPORT, TICK_SECONDS, LiveRun
 from .run.progress import ProgressReport
 from .run.targets import TITLE, plan_objects, report_skipped, stylize_objects, stylize_problem
 from .settings import schema, settings_io
@@ -25,16 +26,7 @@ from .settings.validation import object_problem, poll_result
 from .view.viewport import existing_area, redraw_viewports
 
 PANEL_SECONDS = 0.25  # how often a live run redraws the sidebar (the viewport: every tick that steps)
-KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel")  # what modal_events does with keys
-# In Weight Paint clicks paint (modal_events.clicks lets them through) and the object holds still.
-PAINT_HINTS = ("Left-drag: paint the Region's strength", "Ctrl+Tab / Back to Object Mode: stop painting, "
-               "the run takes the strokes", "Enter: keep", "Esc: cancel")
-PIN_HINT = "Drag a pin: move its handle"  # what handle_tool does, where a run has pins
-SETUP_HINT = "Esc: cancel"
 EDITS_UNDO_NAME = "Edits during Stylize"  # the undo step of what was edited during a cancelled run
-# A file saved during a run holds the meshes as they were before it (what Esc restores).
-SAVED_NOTE = "Saved without this run (Enter keeps it)"
-SAVED_REPORT = "Saved %s with the meshes as before Stylize: the live run goes on, and is saved once kept"
 _STEPS = schema.field(schema.OBJECT, "iterations")
 
 
@@ -247,9 +239,8 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
                 self.report({'WARNING'}, "Stylize: ending a handler failed: %s" % exc)
         if keep:  # should this raise, the run is still on and modal() cancels it
             live.keep()
-            self.iterations = min(live.steps, _STEPS.hard[1])
-            self.settings_json = settings_io.objects_to_json([s.obj for s in live.sessions])
-            self.pin_targets = targets_json(live.sessions)
+            for name, value in live.redo_values(_STEPS.hard[1]).items():
+                setattr(self, name, value)
         try:
             if not keep:
                 live.cancel()  # restores whatever still exists, never freed data
@@ -266,20 +257,11 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         # Blender cancels a modal operator when e.g. its window closes, a file loads or it quits.
         self.stop(context, keep=False)
 
-    def status_line(self):
-        """The header and status bar text: the run's state, notes and keys, or what a handler that has
-        the keys for now says (a modal_events.KeysNote: a drag's Esc is not the run's)."""
-        keys_taken = [note for note in self.notes.values() if isinstance(note, modal_events.KeysNote)]
-        if keys_taken:
-            return TITLE + ": " + keys_taken[-1]
-        notes = "".join("  |  " + note for note in self.notes.values() if note)
-        return self.live.status_text() + notes + "  |  " + "  |  ".join(self.key_hints())
-
     def show_status(self, context, clear=False):
         """Write the status bar text (event handlers call it after changing notes). The viewport's
         header keeps its menus, its mode menu being a way to Weight Paint during a run, except while a
         handler has the keys (a handle drag): then it says what they do, where the artist looks."""
-        text = None if clear else self.status_line()
+        text = None if clear else self.live.status_line(self.notes)
         area = existing_area(self._area_pointer)
         if area is not None:
             keys_taken = any(isinstance(note, modal_events.KeysNote) for note in self.notes.values())
@@ -288,19 +270,7 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             context.workspace.status_text_set(text)
 
     def panel_state(self):
-        """(title, [(text, icon)], key hints) for the sidebar's box while the run goes on (ui.py)."""
-        live = self.live
-        return live.panel_title(), live.panel_lines(), self.key_hints()
-
-    def key_hints(self):
-        """The keys that act on the run now; the pin hint only where an object has a Pin Group."""
-        if self.live.preparing:
-            return (SETUP_HINT,)
-        if bpy.context.mode == 'PAINT_WEIGHT':
-            return PAINT_HINTS
-        pinned = any(session.object_alive() and session.obj.gauss_stylization.pin_group
-                     for session in self.live.sessions)
-        return KEY_HINTS + (PIN_HINT,) if pinned else KEY_HINTS
+        return self.live.panel_state()
 
     @property
     def tick_ms(self):

@@ -250,14 +250,15 @@ def test_a_drag_takes_esc_and_enter_before_the_run_and_each_object_has_its_handl
 
 
 def test_while_a_handle_is_dragged_the_status_says_only_what_the_keys_do_to_it(addon):
-    """Issue 26: the header showed the run's "Esc / Right-click: cancel" beside the drag's "Esc /
+    """The header showed the run's "Esc / Right-click: cancel" beside the drag's "Esc /
     right-click: put back", and was cut off. During a drag it now says the drag's keys alone."""
     obj, session = _pinned_sphere(addon)
     run = _Run([session])
     run.live = addon.run.live_run.LiveRun.__new__(addon.run.live_run.LiveRun)  # status_text() is not asked
-    status_line = addon.operators.OBJECT_OT_gauss_stylize.status_line
-    key_hints = addon.operators.KEY_HINTS
-    run.key_hints = lambda: key_hints
+    key_hints = addon.run.live_run.KEY_HINTS
+
+    def status_line(run):
+        return run.live.status_line(run.notes)
     try:
         tool, _handles = _grab(addon, run, session, 0)
         addon.handles.handle_tool._show_hint(run, bpy.context, tool)

@@ -117,7 +117,7 @@ def test_weights_are_read_from_the_group_and_zero_leaves_faces_unstyled(addon):
 
 def test_overlapping_regions_blend(addon):
     # Two slots whose Regions both cover the sphere with weight 1: the second a cube turned about z.
-    # The result lies between the two styles on their own (the later slot no longer wins).
+    # The result lies between the two styles on their own: overlapping Regions add up, neither slot wins.
     turned = np.array([[np.cos(np.pi / 4), -np.sin(np.pi / 4), 0], [np.sin(np.pi / 4), np.cos(np.pi / 4), 0],
                        [0, 0, 1]])
     turned_cube = np.vstack([turned.T, -turned.T])

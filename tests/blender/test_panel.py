@@ -179,14 +179,15 @@ def test_settling_is_the_change_on_a_log_scale_from_one_to_the_tolerance(addon, 
 def test_the_pin_hint_shows_only_where_a_run_has_a_pin_group(addon):
     obj = helpers.suzanne(levels=0)
     helpers.add_slot(obj, 'CUBE')
-    run = addon.operators.OBJECT_OT_gauss_stylize.key_hints
     live = helpers.live_run([obj])
+    pin_hint = addon.run.live_run.PIN_HINT
     try:
-        holder = type("Run", (), {"live": live})()
-        assert addon.operators.PIN_HINT not in run(holder)
+        assert pin_hint not in live.key_hints() and pin_hint not in live.status_line({})
         helpers.add_group(obj, "Pins", range(10))
         obj.gauss_stylization.pin_group = "Pins"
-        assert addon.operators.PIN_HINT in run(holder)
+        assert pin_hint in live.key_hints() and pin_hint in live.panel_state()[2]
+        assert live.status_line({"note": "a handler's note"}).endswith(
+            "  |  a handler's note  |  " + "  |  ".join(live.key_hints()))
     finally:
         live.cancel()
 
@@ -196,13 +197,11 @@ def test_while_painting_the_hints_say_what_clicks_do(addon):
     # "Left-click: keep / Right-click: cancel" then, and must say how to go back, keep and cancel.
     obj = helpers.suzanne(levels=0)
     helpers.add_slot(obj, 'CUBE')
-    hints = addon.operators.OBJECT_OT_gauss_stylize.key_hints
     live = helpers.live_run([obj])
     try:
-        holder = type("Run", (), {"live": live})()
-        assert any("Left-click" in hint for hint in hints(holder))
+        assert any("Left-click" in hint for hint in live.key_hints())
         bpy.ops.object.mode_set(mode='WEIGHT_PAINT')
-        painting = " | ".join(hints(holder))
+        painting = " | ".join(live.key_hints())
         assert "Left-click" not in painting and "Right-click" not in painting
         assert "paint" in painting.lower() and "Object Mode" in painting
         assert "Enter: keep" in painting and "Esc: cancel" in painting

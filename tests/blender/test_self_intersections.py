@@ -41,13 +41,16 @@ def test_a_live_run_says_when_it_holds_vertices_back(addon):
     helpers.add_slot(obj, 'CUBE')
     obj.gauss_stylization.lam = 20.0
     obj.gauss_stylization.avoid_self_intersections = True
-    run = addon.run.session.Session(obj)
-    held = 0
+    live = helpers.live_run([obj])
+    solver = live.sessions[0].solver
+    said = []  # (vertices the last step held back, whether the status line said so) after each tick
     for _ in range(20):
-        run.step(1)
-        held = max(held, run.solver.held_vertices)
-    run.cancel()
-    assert held > 0  # Suzanne's eyes touch her head: the guard has work to do
+        live.tick()
+        said.append((solver.held_vertices, "held back" in live.status_text()))
+    held_text = live.status_text() if said[-1][0] else None
+    live.cancel()
+    assert any(held for held, _ in said), said  # Suzanne's eyes touch her head: the guard has work to do
+    assert all(mentioned == (held > 0) for held, mentioned in said), (said, held_text)
 
 
 def _two_spheres_with_a_cap(addon):

@@ -8,19 +8,10 @@ import time
 
 import bmesh
 import numpy as np
-import pytest
 
 import helpers
 
 THREAD = "Gauss Stylize set-up"
-
-
-@pytest.fixture(autouse=True)
-def _module_reports_set_up_progress(addon):
-    # gauss_core.Progress (set-ups that release the GIL, report and cancel) is missing from older builds
-    # of the module; with one of those a set-up blocks and cannot be cancelled, so there is nothing to test.
-    if not hasattr(addon.native.core(), "Progress"):
-        pytest.skip("this gauss_core has no Progress (set-ups cannot be watched or cancelled yet)")
 
 
 def _grid(cuts, name="Grid"):

@@ -269,7 +269,7 @@ def header_fits(d, name):
     op = d.live_operator()
     area, regions = d.view3d()
     header = regions['HEADER']
-    text = op.status_line() if op is not None else ""
+    text = op.live.status_line(op.notes) if op is not None else ""
     with bpy.context.temp_override(window=d.window(), area=area, region=header):
         wide = text_width(text)
     room = header.width - 2 * 20.0 * bpy.context.preferences.system.ui_scale

@@ -166,16 +166,16 @@ def the_documented_ways(name, _prepared):
     obj = bpy.data.objects[name]
     original = coords(obj)
     obj.vertex_groups["Paint"].add(list(range(len(original))), 0.0, 'REPLACE')  # what the stroke paints shows
-    op_class = kit.addon().operators
-    paint = kit.addon().operators.PAINT_HINTS
+    hints = kit.addon().run.live_run
+    paint = hints.PAINT_HINTS
     yield from live_run(3)
     # 1. Ctrl+Tab: the mode pie (Weight Paint is its upper left item for a mesh), then a real stroke.
     yield from _ctrl_tab_pie(-150, 150)
     check("Ctrl+Tab's pie takes the object to Weight Paint during a run", _run_goes_on(obj, 'WEIGHT_PAINT'),
           "mode %s" % obj.mode)
     op = live_operator()
-    check("while painting the hints say that clicks paint", op is not None and tuple(op.key_hints()) == paint,
-          str(op.key_hints()) if op else "no run")
+    check("while painting the hints say that clicks paint", op is not None and tuple(op.live.key_hints()) == paint,
+          str(op.live.key_hints()) if op else "no run")
     obj.vertex_groups.active_index = obj.vertex_groups["Paint"].index
     bpy.context.scene.tool_settings.unified_paint_settings.weight = 1.0
     for brush in bpy.data.brushes:
@@ -195,8 +195,8 @@ def the_documented_ways(name, _prepared):
     yield 0.5
     op = live_operator()
     check("back in Object Mode the run took the stroke", op is not None and op.session.weights["Paint"].max() > 0.5)
-    check("back in Object Mode the hints are the run's own", op is not None and tuple(op.key_hints())[:2] ==
-          op_class.KEY_HINTS)
+    check("back in Object Mode the hints are the run's own", op is not None and tuple(op.live.key_hints())[:2] ==
+          hints.KEY_HINTS)
     # 2. The header's mode menu (the header keeps its menus during a run).
     yield from _header_mode_menu('W')
     check("the header's mode menu takes the object to Weight Paint during a run", _run_goes_on(obj, 'WEIGHT_PAINT'),

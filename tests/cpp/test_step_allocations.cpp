@@ -1,4 +1,4 @@
-// A step must not touch the heap (the rule for the per-iteration loop): this file replaces
+// A step must not touch the heap, so that a live run's tick never waits on the allocator: this file replaces
 // the global allocation functions with counting ones for the whole test binary.
 #include <gtest/gtest.h>
 

@@ -12,11 +12,12 @@ from measures import aligned_share
 
 
 def reldv(previous, current, rest):
-    """The issues' definition, in the caller's frame."""
+    """reldV as fixed_point_iteration.h defines it (the reference cubic code's stopping rule), in the
+    caller's frame."""
     return np.abs(current - previous).max() / np.abs(current - rest).max()
 
 
-def test_last_reldv_is_the_issues_definition():
+def test_last_reldv_is_the_largest_change_over_the_largest_displacement():
     V, F = icosphere(3)
     V = V * 7.0 + [1.0, -2.0, 3.0]  # any frame: reldV is scale- and translation-invariant
     s = gauss_core.Solver(V, F, acceleration=False)  # accelerated: see the test below

@@ -99,7 +99,7 @@ def test_the_original_stanford_bunny_with_unreferenced_vertices_stylizes():
     # The reference implementation reports a numerical issue on this file and does nothing useful.
     path = SHARED_MESHES / "bunny" / "bun_zipper_35947.obj"
     if not path.exists():
-        pytest.skip("%s is absent" % path)
+        pytest.skip("../shared/meshes not present (%s)" % path)
     bunny_V, bunny_F = read_obj(path)
     unused = np.setdiff1d(np.arange(len(bunny_V)), np.unique(bunny_F))
     assert len(unused) > 1000

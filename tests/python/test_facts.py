@@ -8,13 +8,16 @@ import numpy as np
 import pytest
 
 import gauss_core
+import settings_header
 from conftest import BUILD
 from meshes import icosphere
 
-SETTINGS = ("lam", "sigma", "mu", "axis_contribution", "admm_iterations", "cubic_lambda", "tolerance")
-INTEGER = {"admm_iterations"}
-OPTIONS = ("keep_volume", "acceleration", "avoid_self_intersections")  # on/off: a bool default, no limits
-LABEL = {"lam": "lambda", "admm_iterations": "ADMM iterations", "cubic_lambda": "cubic lambda"}  # in messages
+# As settings.h declares them (settings_header.py reads the header): no list of names of its own.
+SETTINGS = settings_header.names("Setting")
+INTEGER = {name for name in SETTINGS if settings_header.declared()[name][2]}
+OPTIONS = settings_header.names("Option")  # on/off: a bool default, no limits
+LABEL = {name: settings_header.declared()[name][1] for name in SETTINGS}  # how messages call it
+STYLE_SETTINGS = {"sigma", "mu", "axis_contribution"}  # gauss_core.Style's keywords; the rest are Solver's
 V, F = icosphere(2)
 
 
@@ -74,7 +77,7 @@ def test_a_new_solver_and_keyword_defaults_use_the_defaults():
 
 def _apply(name, value):
     """Uses one setting where the module takes it, steps once, returns the vertices."""
-    if name in ("lam", "admm_iterations", "cubic_lambda", "tolerance"):
+    if name not in STYLE_SETTINGS:
         s = gauss_core.Solver(V, F, method="cubic" if name == "cubic_lambda" else "gauss", **{name: value})
         setattr(s, name, value)
     else:

@@ -15,7 +15,7 @@ FIGURE = re.compile(r"\d+(\.\d+)?\s*(x|\u00d7|times)\b|\btwice\b|\btwo to\b|\bon
 PLACES = (
     ("README.md", "**Avoid Self-Intersections** (off by default)", ANCHOR),
     ("python_addon/gauss_stylization/settings/schema.py", 'Bool("avoid_self_intersections"', "The guard's cost"),
-    ("cpp/python/iteration_bindings.h", 'cls.def_property("avoid_self_intersections"', "The guard's cost"),
+    ("cpp/include/gauss/settings.h", "inline constexpr Option avoid_self_intersections{", "The guard's cost"),
 )
 
 

@@ -1,17 +1,21 @@
 #pragma once
-// Every solver setting's default and hard limits, written once.
+// Every solver setting's default, hard limits and Python doc, written once, and the table of how
+// gauss_core.Solver binds them (solver_settings, solver_readouts at the end).
 //
-// Everything else derives from this table: the solver's and the preference function's input checks,
-// the Python module's keyword defaults and its exports gauss_core.DEFAULTS / gauss_core.LIMITS, and
-// through those the Blender add-on's properties (default, hard range), validation and panel. The build
-// also writes the table to the add-on's core_facts.json (tools/gauss_facts.cpp), which the add-on reads
-// when the native module cannot be loaded, so saved settings still register with the right defaults.
+// Everything else derives from this file: the solver's and the preference function's input checks,
+// the Python module's keyword arguments, properties and their docs (cpp/python/solver_bindings.cpp
+// walks the tables), its exports gauss_core.DEFAULTS / gauss_core.LIMITS, and through those the Blender
+// add-on's properties (default, hard range), validation and panel. The build also writes the settings
+// to the add-on's core_facts.json (tools/gauss_facts.cpp), which the add-on reads when the native
+// module cannot be loaded, so saved settings still register with the right defaults.
+// How to add a setting: docs/architecture.md#how-to-add-a-style-or-a-setting.
 //
 // Limits are inclusive. They are where a setting stops being useful, kept well inside where the
 // arithmetic would overflow (lambda and mu multiply squared edge lengths; sigma is an exponent).
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 namespace gauss {
 
@@ -21,6 +25,7 @@ struct Setting {
   double default_value;
   double min, max;
   bool integer;
+  const char* doc;  // what Python's help() says of it (a Solver property or a Style keyword)
 
   bool accepts(double v) const { return v >= min && v <= max; }  // false for NaN
 
@@ -38,69 +43,88 @@ struct Setting {
 struct Option {
   const char* name;  // the Python name (Solver keyword and property)
   bool default_value;
+  const char* doc;  // what Python's help() says of it
+};
+
+// A setting that takes one of a list of names (the method): exported in gauss_core.DEFAULTS as a str.
+struct Choice {
+  const char* name;  // the Python name (Solver keyword and property)
+  const char* default_value;
+  const char* doc;  // what Python's help() says of it
 };
 
 namespace settings {
 
-// lambda of Eq. 27: how strongly edges follow the preferred normals.
-inline constexpr Setting lambda{"lam", "lambda", 4.0, 0.0, 1e4, false};
-// sigma of Eq. 9: concentration of each preferred normal's bump on the Gauss sphere.
-inline constexpr Setting sigma{"sigma", "sigma", 4.0, 1e-3, 1e3, false};
-// mu: weight of -mu * g(n_f) for a style's faces, relative to the other styles and to ARAP.
-inline constexpr Setting mu{"mu", "mu", 1.0, 0.0, 1e3, false};
-// Weight of a ring style's discrete (axis) normals relative to its rings.
-inline constexpr Setting axis_contribution{"axis_contribution", "axis_contribution", 0.5, 0.0, 1.0, false};
-// ADMM rounds per step (Algorithm 1's inner loop).
-inline constexpr Setting admm_iterations{"admm_iterations", "ADMM iterations", 1, 1, 100, true};
-// lambda of the cubic method (Cubic Stylization, Liu & Jacobson 2019): the weight of its term
-// lambda * a_i * ||R_i n_i||_1 against ARAP in a unit bounding box; 0.2 is the reference
-// implementation's default. Gauss's lambda (above) weighs another energy, so each method has its own.
-inline constexpr Setting cubic_lambda{"cubic_lambda", "cubic lambda", 0.2, 0.0, 100.0, false};
+// The doc of each setting is what Python's help() shows; the bindings add where its default and range are.
+
+inline constexpr Setting lambda{"lam", "lambda", 4.0, 0.0, 1e4, false,
+                                "lambda of Eq. 27: how strongly edges follow the preferred normals. Setting it does "
+                                "not re-factor."};
+inline constexpr Setting sigma{"sigma", "sigma", 4.0, 1e-3, 1e3, false,
+                               "sigma of Eq. 9: concentration of each preferred normal's bump on the Gauss sphere."};
+inline constexpr Setting mu{"mu", "mu", 1.0, 0.0, 1e3, false,
+                            "Weight of -mu * g(n_f) for a style's faces, relative to the other styles and to ARAP."};
+inline constexpr Setting axis_contribution{"axis_contribution", "axis_contribution", 0.5, 0.0, 1.0, false,
+                                           "Weight of a ring style's discrete (axis) normals relative to its rings."};
+inline constexpr Setting admm_iterations{"admm_iterations", "ADMM iterations", 1, 1, 100, true,
+                                         "ADMM rounds per step (Algorithm 1's inner loop)."};
+// Gauss's lambda (above) weighs another energy, so each method has its own; 0.2 is the reference
+// implementation's default.
+inline constexpr Setting cubic_lambda{"cubic_lambda", "cubic lambda", 0.2, 0.0, 100.0, false,
+                                      "lambda of the cubic method (Cubic Stylization, Liu & Jacobson 2019): the "
+                                      "weight of its term lambda * a_i * ||R_i n_i||_1 against ARAP in a unit "
+                                      "bounding box, scaled per face by its style's mu."};
 
 // Stylization methods, by the names gauss_core takes (Solver(method=...)): the paper's "gauss" and
 // Cubic Stylization's "cubic" (cubic_local_step.h). A new method is appended, never reordered: the
 // add-on's enum stores these positions in saved files.
 inline constexpr const char* method_names[] = {"gauss", "cubic"};
 inline constexpr const char* default_method = "gauss";
+inline constexpr Choice method{"method", default_method,
+                               "The next step's method, one of METHODS in any case ('gauss': this paper; 'cubic': "
+                               "Cubic Stylization, whose strength is cubic_lambda, scaled per face by its style's "
+                               "mu and turned by its style's rotation). Switching keeps pins, styles and the "
+                               "factorization."};
 
-// A run has converged when a step moved the mesh by less than this relative change, reldV
-// (fixed_point_iteration.h): the largest coordinate change of the step over the largest coordinate
-// displacement from the rest mesh (the stopping rule of the reference cubic stylization code).
-// Below 1e-5 the rounding floor of reldV is too close (a still mesh reads ~4e-7).
-inline constexpr Setting tolerance{"tolerance", "tolerance", 1e-3, 1e-5, 1.0, false};
+// reldV is the stopping rule of the reference cubic stylization code; below 1e-5 its rounding floor is
+// too close (a still mesh reads ~4e-7).
+inline constexpr Setting tolerance{"tolerance", "tolerance", 1e-3, 1e-5, 1.0, false,
+                                   "The reldV (last_reldv: a step's largest coordinate change over the largest "
+                                   "coordinate displacement from the rest mesh) below which `converged` is True."};
 
 inline constexpr const Setting* all[] = {&lambda,          &sigma,        &mu,       &axis_contribution,
                                          &admm_iterations, &cubic_lambda, &tolerance};
 
-// Keep Volume (volume_keeper.h): after each step, scale every component back to its rest volume (closed)
-// or area (open), since stylization shrinks a mesh. Off by default, as the paper's method does not rescale.
-inline constexpr Option keep_volume{"keep_volume", false};
+// Off by default, as the paper's method does not rescale (volume_keeper.h).
+inline constexpr Option keep_volume{"keep_volume", false,
+                                    "After each step, scale every component without a pin uniformly about its "
+                                    "centroid back to its rest volume (closed components) or surface area (open "
+                                    "ones), since stylization shrinks a mesh."};
 
-// Accelerate the iteration (fixed_point_iteration.h): the same result in about a third of the steps.
-inline constexpr Option acceleration{"acceleration", true};
+// fixed_point_iteration.h; how many steps it saves: docs/performance.md#converging-in-fewer-steps.
+inline constexpr Option acceleration{"acceleration", true,
+                                     "Accelerate the iteration (momentum with adaptive restart), for both methods: "
+                                     "fewer steps to the same result (docs/performance.md, 'Converging in fewer "
+                                     "steps'). The cubic method's per-vertex ADMM state is extrapolated with the "
+                                     "vertices. False: the plain iteration. Either way every step ends on a step "
+                                     "of the method's local-global iteration."};
 
-// Avoid Self-Intersections (self_intersection.h): no step brings two faces into contact that were not
-// at the start; vertices that would are held back. Off by default: the paper's method does not look.
-inline constexpr Option avoid_self_intersections{"avoid_self_intersections", false};
+// Off by default: the paper's method does not look (self_intersection.h).
+inline constexpr Option avoid_self_intersections{
+    "avoid_self_intersections", false,
+    "No step (nor a move of the pins) brings two faces into contact that were not in contact when it was "
+    "switched on (or at reset() and set_vertices()): vertices that would are held back (held_vertices), so the "
+    "result never passes through itself where the input did not. Each step takes longer (how much: "
+    "docs/performance.md, \"The guard's cost\")."};
 
 inline constexpr const Option* options[] = {&keep_volume, &acceleration, &avoid_self_intersections};
 
-// The acceleration's parameters per method (fixed_point_iteration.h): the momentum factor beta, and for
-// how many steps a vertex whose step turned against its momentum goes without it, so that flapping
-// sliver regions are not kicked further. The cubic method's iteration carries its ADMM state and creeps
-// more slowly, so a stronger momentum and no hold serve it best: the fastest to the same converged share
-// on the bunny, Spot and the armadillo (docs/performance.md). The Gauss method needs its hold to keep the
-// plain iteration's converged share: without it the 43K armadillo stops after 60 steps at 0.820, where
-// the plain iteration reaches 0.833 in 126 steps and the hold 0.836; on the 35K bunny and Spot the
-// shares agree within 0.002 either way.
-// stop_factor: an extrapolated step's reldV counts as measured / stop_factor. Measured from the
-// extrapolated point, the cubic method's step (its ADMM warm-started from an extrapolated state too)
-// understates how far the shape still moves: at a factor of 1 the 43K armadillo stopped at a share of
-// 0.434 at lambda 0.4, where the plain iteration converges to 0.471 (the reference: 0.462), and at
-// 0.578 instead of 0.604 at lambda 0.8. At 0.7 every mesh and lambda we measured (armadillo 43K and
-// 14.5K, bunny 35K and 6K, Spot; lambda 0.2, 0.4, 0.8) stops within 0.01 of the plain iteration's
-// share, in 5 to 15 times fewer steps (docs/performance.md). The Gauss method's accelerated stop
-// already agrees with its plain one.
+// The acceleration's parameters per method (fixed_point_iteration.h): the momentum factor beta; for how
+// many steps a vertex whose step turned against its momentum goes without it, so that flapping sliver
+// regions are not kicked further; and stop_factor: an extrapolated step's reldV counts as measured /
+// stop_factor, because measured from the extrapolated point the cubic method's step understates how far
+// the shape still moves. Each was chosen as the fastest to the plain iteration's converged share, which
+// is measured in docs/performance.md#converging-in-fewer-steps.
 struct Momentum {
   double beta;
   int hold;
@@ -125,6 +149,81 @@ inline constexpr double max_coordinate = 1e200;
 // Pin targets and the vertices set_vertices() takes: within max_pin_distance times the mesh's size of
 // its centre (beyond ~1e150 sizes, squared edge lengths overflow and E_ARAP turns infinite).
 inline constexpr double max_pin_distance = 1e12;
+
+// --- How gauss_core.Solver binds the solver (cpp/python/solver_bindings.cpp walks these tables). ---
+//
+// A setting row: the setting (its name, default, doc and limits above) with the solver's getter and
+// setter of it. Python gets a keyword-only argument of Solver() with the setting's default, applied by
+// the setter after the set-up (and checked before it), and a property of the same name whose doc is
+// the setting's. Value is the setter's type: double or int for a Setting, bool for an Option, the
+// Method enum for the Choice. Rows are names, never positions, so no two settings can be swapped.
+template <class Solver, class Descriptor, class Value>
+struct SettingRow {
+  const Descriptor* setting;
+  Value (Solver::*get)() const;
+  void (Solver::*set)(Value);
+};
+template <class Solver, class Descriptor, class Value>
+constexpr SettingRow<Solver, Descriptor, Value> row(const Descriptor& setting, Value (Solver::*get)() const,
+                                                    void (Solver::*set)(Value)) {
+  return {&setting, get, set};
+}
+
+// A read-out row: a read-only property of Solver that returns the getter's value.
+template <class Solver, class Value>
+struct ReadoutRow {
+  const char* name;  // the Python name
+  Value (Solver::*get)() const;
+  const char* doc;
+};
+template <class Solver, class Value>
+constexpr ReadoutRow<Solver, Value> readout(const char* name, Value (Solver::*get)() const, const char* doc) {
+  return {name, get, doc};
+}
+
+// Every setting of the solver, in the order Solver()'s keywords list and apply them. A template so that
+// this header needs no solver: the bindings instantiate it with GaussSolver (gauss_solver.h).
+template <class Solver>
+constexpr auto solver_settings() {
+  return std::make_tuple(row(lambda, &Solver::lambda, &Solver::set_lambda),
+                         row(admm_iterations, &Solver::admm_iterations, &Solver::set_admm_iterations),
+                         row(method, &Solver::method, &Solver::set_method),
+                         row(cubic_lambda, &Solver::cubic_lambda, &Solver::set_cubic_lambda),
+                         row(tolerance, &Solver::tolerance, &Solver::set_tolerance),
+                         row(keep_volume, &Solver::keep_volume, &Solver::set_keep_volume),
+                         row(acceleration, &Solver::acceleration, &Solver::set_acceleration),
+                         row(avoid_self_intersections, &Solver::avoid_self_intersections,
+                             &Solver::set_avoid_self_intersections));
+}
+
+// Every scalar read-out of the solver (arrays, dicts and methods are bound by hand in cpp/python/).
+template <class Solver>
+constexpr auto solver_readouts() {
+  return std::make_tuple(
+      readout("last_reldv", &Solver::last_reldv,
+              "reldV of the last step: its largest coordinate change over the largest coordinate displacement\n"
+              "from the rest mesh. inf before the first step and after any change of the settings, styles, pins\n"
+              "or vertices: a change leaves the run unconverged until a step says otherwise."),
+      readout("converged", &Solver::converged,
+              "last_reldv < tolerance: the last step moved the mesh by less than the tolerance, and nothing\n"
+              "changed since; False while held_back."),
+      readout("held_back", &Solver::held_back,
+              "The run stopped moving because avoid_self_intersections holds it, not because it converged: the\n"
+              "last step moved less than the tolerance, but its held vertices (held_vertices) would have moved\n"
+              "more without the guard. step_until stops here as at convergence."),
+      readout("held_vertices", &Solver::held_vertices,
+              "Vertices avoid_self_intersections held back in the last step or pin move (0 when it is off)."),
+      readout("step_count", &Solver::step_count, "Steps since the set-up or the last reset()."),
+      readout("factorization_count", &Solver::factorization_count,
+              "Factorizations so far: 1 after the set-up, one more per set_pins()."),
+      readout("num_vertices", &Solver::num_vertices, "#V: the rows of V."),
+      readout("num_faces", &Solver::num_input_faces, "#F: the rows of F."),
+      readout("arap_energy", &Solver::arap_energy, "E_ARAP of the current mesh (normalized frame)."),
+      readout("g_energy", &Solver::g_energy, "E_g = sum over styled faces of g(n_f)."),
+      readout("cubic_admm_iterations", &Solver::cubic_admm_iterations,
+              "ADMM iterations of the last cubic step, summed over the vertices."),
+      readout("cubic_energy", &Solver::cubic_energy, "sum_i lambda_i |Q_i^T R_i n_i|_1 of the last cubic step."));
+}
 
 }  // namespace settings
 }  // namespace gauss

@@ -1,7 +1,9 @@
 """The objects of one live run: their set-up on a worker thread, then solver steps at every tick.
 
-Nothing here touches the interface; the modal operator (operators.py) reports
-what ``finish_setup()`` and ``tick()`` return and shows ``status_text()``.
+Nothing here touches the interface: the modal operator (operators.py) is the event loop, which
+reports what ``finish_setup()`` and ``tick()`` return and shows what this class words for it: the
+status line (``status_line()``), the sidebar box (``panel_state()``) and, once kept, the values its
+redo panel repeats (``redo_values()``).
 
 A tick gives every object at most one step, in turn, until the tick's time
 budget is used; the next tick goes on with the object after the last one
@@ -17,8 +19,11 @@ import math
 import time
 from collections import deque
 
+import bpy
+
 from ..errors import SettingsError
-from ..settings.settings_io import to_dict
+from ..settings.settings_io import objects_to_json, to_dict
+from .pin_targets import targets_json
 from .progress import progress_text, settling_details, settling_fraction, settling_text
 from .session import TIMINGS_KEPT, Session
 from .solver_setup import SolverSetup
@@ -27,7 +32,21 @@ from .targets import TITLE
 TICK_SECONDS = 0.01  # the timer of a run in the UI (a Stylize, a bake): how often it gets a tick
 TICK_BUDGET = 1.0 / 30.0  # seconds of solver steps per tick before the rest wait for the next one
 CONVERGED = "Converged"  # status bar and panel: the object is not stepped until something changes
+KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel")  # what modal_events does with keys
+# In Weight Paint clicks paint (modal_events.clicks lets them through) and the object holds still.
+PAINT_HINTS = ("Left-drag: paint the Region's strength", "Ctrl+Tab / Back to Object Mode: stop painting, "
+               "the run takes the strokes", "Enter: keep", "Esc: cancel")
+PIN_HINT = "Drag a pin: move its handle"  # what handle_tool does, where a run has pins
+SETUP_HINT = "Esc: cancel"
+# A file saved during a run holds the meshes as they were before it (what Esc restores).
+SAVED_NOTE = "Saved without this run (Enter keeps it)"
+SAVED_REPORT = "Saved %s with the meshes as before Stylize: the live run goes on, and is saved once kept"
 HELD_BACK = "held back by Avoid Self-Intersections at %d vertices"  # the guard, not convergence, stopped it
+
+
+class KeysNote(str):
+    """A note (run.notes) of a handler that has the keys for now, e.g. a handle being dragged: the
+    header and status bar show it alone, so that no key is said to do two things."""
 
 
 def held_back(session):
@@ -302,3 +321,35 @@ class LiveRun:
                     lines.append((settling_text(fraction), 'BLANK1',
                                   settling_details(session.reldv, session.applied["tolerance"])))
         return lines
+
+    # -- what the Stylize operator shows of the run, and what its redo panel repeats --------------
+
+    def key_hints(self):
+        """The keys that act on the run now; the pin hint only where an object has a Pin Group."""
+        if self.preparing:
+            return (SETUP_HINT,)
+        if bpy.context.mode == 'PAINT_WEIGHT':
+            return PAINT_HINTS
+        pinned = any(session.object_alive() and session.obj.gauss_stylization.pin_group
+                     for session in self.sessions)
+        return KEY_HINTS + (PIN_HINT,) if pinned else KEY_HINTS
+
+    def status_line(self, notes):
+        """The header and status bar: status_text(), the notes ({name: text} of event handlers), the keys;
+        or what a handler that has the keys for now says (a KeysNote: a drag's Esc is not the run's)."""
+        keys_taken = [note for note in notes.values() if isinstance(note, KeysNote)]
+        if keys_taken:
+            return TITLE + ": " + keys_taken[-1]
+        notes = "".join("  |  " + note for note in notes.values() if note)
+        return self.status_text() + notes + "  |  " + "  |  ".join(self.key_hints())
+
+    def panel_state(self):
+        """(title, [(text, icon)], key hints) for the sidebar's box while the run goes on (ui.py)."""
+        return self.panel_title(), self.panel_lines(), self.key_hints()
+
+    def redo_values(self, max_steps):
+        """{operator property: value} of a kept run, so that the redo panel repeats it: its steps (at
+        most max_steps), the settings it ended with and where it left dragged pins."""
+        return {"iterations": min(self.steps, max_steps),
+                "settings_json": objects_to_json([session.obj for session in self.sessions]),
+                "pin_targets": targets_json(self.sessions)}

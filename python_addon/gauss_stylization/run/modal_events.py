@@ -8,15 +8,9 @@ so navigation, the sidebar and every other editor keep working during a run.
 A handler is ``handler(run, context, event)`` and returns None (not its
 business) or what modal() returns: {'RUNNING_MODAL'} to take the event,
 {'PASS_THROUGH'} to give it to Blender after all, or the result of
-``run.end(context, keep)`` when it ends the run. ``run`` is the modal operator:
-
-    run.end(context, keep, why=None) -> {'FINISHED'} / {'CANCELLED'}: keep or restore all objects
-    run.preparing           -> True while the solvers are still being set up
-    run.live.sessions       -> the session.Session of each object in the run
-    run.scratch             -> dict for handlers' own state during this run, by handler name
-    run.notes               -> dict of texts the status bar shows after the run's own, by name; a
-                               KeysNote there takes the place of the run's texts while it is set
-    run.show_status(context)   redraws the header and status bar (after a handler changed notes)
+``run.end(context, keep)`` when it ends the run. ``run`` is the modal operator, a
+run_interface.StylizeRun (end, preparing, sessions, scratch, notes, show_status...);
+a KeysNote in run.notes takes the place of the run's texts while it is set.
 
 Another feature adds its handler with ``add(handler, order, on_end)`` when it
 registers (and removes it when it unregisters); e.g. pin handles take presses
@@ -27,6 +21,7 @@ before the meshes are kept or restored.
 """
 
 from ..view.viewport import drag_distance_exceeded, free_viewport_at
+from .live_run import KeysNote  # noqa: F401 (handlers reach it here: modal_events.KeysNote)
 from .runs import UNDO_CANCELLED
 
 DRAGS = 50      # a drag in progress (a pin handle): its Esc puts it back, its Enter drops it
@@ -36,11 +31,6 @@ HANDLES = 200   # for things in the viewport that take presses and drags (pin ha
 CLICKS = 300    # a plain click in the free viewport keeps, a right-click cancels
 
 _handlers = []  # (order, handler, on_end), sorted by order
-
-
-class KeysNote(str):
-    """A note (run.notes) of a handler that has the keys for now, e.g. a handle being dragged: the
-    header and status bar show it alone, so that no key is said to do two things."""
 
 
 def add(handler, order, on_end=None):

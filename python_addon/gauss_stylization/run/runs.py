@@ -1,10 +1,8 @@
 """The live runs: which objects are being stylized, and ending them all.
 
 Module state, because modal operators live outside RNA. A run is the modal
-operator itself (operators.OBJECT_OT_gauss_stylize, or a bake); all this module asks of
-it is ``stop(context, keep=False)``, ``cancel_keeping_edits(context)`` (Esc's ending),
-``hold_for_save(context)`` / ``resume_after_save(context)`` around a file being written,
-``report(...)`` and ``sessions``.
+operator itself (operators.OBJECT_OT_gauss_stylize, or a bake); what this module asks of
+it is run_interface.Run.
 
 Undo is suspended while any run is live (undo_guard): from the moment the first
 run registers until the last one is forgotten. Every way a run ends goes

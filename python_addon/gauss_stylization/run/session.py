@@ -145,11 +145,10 @@ class Plan:
         options = dict(self.solver_options)
         if progress is not None:
             options["progress"] = progress
-        cancelled = getattr(self.gauss_core, "Cancelled", ())
         try:
             return self.gauss_core.Solver(self.arrays.coords, self.arrays.triangles,
                                           pinned=self.pins if len(self.pins) else None, **options)
-        except cancelled:
+        except self.gauss_core.Cancelled:
             raise
         except (ValueError, TypeError, RuntimeError, MemoryError) as exc:
             raise _solver_error(exc) from exc
@@ -188,7 +187,7 @@ class Session:
         self.bounds = (lower - margin, upper + margin)
         self.steps = 0
         self.step_ms = deque(maxlen=TIMINGS_KEPT)  # ms per step, of the last TIMINGS_KEPT step() / step_until()
-        self.background_pins = background_pins and hasattr(self.gauss_core, "Progress")
+        self.background_pins = background_pins
         self.pins_setup = None         # a PinsSetup running or not yet looked at
         # Counts the Pin Group changes sent to the solver: handles.Handles built before one are stale.
         self.pin_changes = 0

@@ -23,7 +23,7 @@ POLL_SECONDS = 0.05  # how often wait() looks at the progress
 class BackgroundSetup:
     def __init__(self, gauss_core, tasks):
         """tasks: [(weight, text, run)], run one after the other: run(progress) returns the task's
-        result (a gauss_core.Progress to report to, or None when the module has none); weight is
+        result (progress: the gauss_core.Progress to report to); weight is
         the task's share of the whole (its vertex count), text what it does ("Preparing ...")."""
         self.tasks = list(tasks)
         self.results = [None] * len(self.tasks)
@@ -36,18 +36,16 @@ class BackgroundSetup:
         self._thread.start()
 
     def _work(self):
-        progress_type = getattr(self._gauss_core, "Progress", None)
-        cancelled = getattr(self._gauss_core, "Cancelled", ())
         for index, (_weight, _text, run) in enumerate(self.tasks):
             # The new Progress is in place before the flag is read, so cancel() stops either this
             # task (through the Progress) or every later one (through the flag).
-            self._progress = progress_type() if progress_type is not None else None
+            self._progress = self._gauss_core.Progress()
             self.current = index
             if self._cancelled:
                 return
             try:
                 self.results[index] = run(self._progress)
-            except cancelled:
+            except self._gauss_core.Cancelled:
                 return
             except SettingsError as exc:
                 self.results[index] = exc
@@ -65,14 +63,12 @@ class BackgroundSetup:
 
     @property
     def fraction(self):
-        """0..1 of the whole, each task counted by its weight; None if unknown."""
+        """0..1 of the whole, each task counted by its weight."""
         index = self.current
         if index >= len(self.tasks):
             return 1.0
         progress = self._progress
-        if progress is None and len(self.tasks) == 1:
-            return None
-        within = progress.fraction if progress is not None else 0.0
+        within = progress.fraction if progress is not None else 0.0  # None: the thread has not begun
         finished = sum(weight for weight, _text, _run in self.tasks[:index])
         return (finished + within * self.tasks[index][0]) / self._total
 

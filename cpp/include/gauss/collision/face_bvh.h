@@ -101,7 +101,7 @@ class FaceBvh {
   std::vector<int> position_;  // #F: each face's place in order_
   std::vector<int> leaf_of_;   // #F (tree order): the leaf that holds it
   // tasks(kTasks), fixed with the tree. Threads take them round-robin and their sizes differ widely,
-  // so there are many: with 64, two threads on the 35K bunny ran the pairs about as slowly as one.
+  // so there are many (docs/performance.md#avoiding-self-intersections).
   static constexpr int kTasks = 512;
   std::vector<std::array<int, 2>> tasks_;
   std::vector<Box> face_box_;  // #F, in tree order

@@ -22,9 +22,8 @@
 // iteration cap keeps its last iterate (the reference then leaves that rotation uninitialized and
 // its state unsaved), a vertex without a normal (zero-area star) or with lambda_i = 0 takes the plain
 // ARAP rotation, rho stays within [kMinRho, kMaxRho], and the start is z = Q^T n, u = 0 (the
-// reference starts from random z and u; a start at the rest pose's own dual, u = lambda_i / rho
-// sign(Q^T n), was tried: it did not keep a cube's corners any better and took Spot at lambda 0.4 to a
-// share 0.01 further from the reference's, in 941 steps instead of 279).
+// reference starts from random z and u; the rest pose's own dual, u = lambda_i / rho sign(Q^T n),
+// converged further from the reference and more slowly: docs/performance.md#fidelity-to-the-cubic-reference).
 //
 // Usage (geometry-central style: set-up in the constructor, no allocation in fit()):
 //   CubicLocalStep cubic(topo, rest, edge_weight);
@@ -45,12 +44,10 @@ namespace gauss {
 
 namespace cubic_admm {
 // rho of a vertex's first ADMM iteration: kRhoPerArea times its barycentric area a_i (in the
-// normalized frame), at most kRhoInit (the reference's fixed start). The ARAP covariance and lambda_i
-// both scale with a_i (median 3.3e-5 on a 43K armadillo, 6.5e-4 on Spot), so on a fine mesh a fixed
-// 1e-3 outweighs them: it held each rotation near its previous value, the shape crept, and reldV fell
-// below its tolerance long before the shape converged (a share of 0.275 where the reference, whose
-// random start drives rho down, reaches 0.310). Factors 1 to 4 converge alike; 16 brakes again. The
-// cap keeps coarse meshes (a 6-by-6 cube face: a_i ~0.03) on the start that already converged there.
+// normalized frame), at most kRhoInit (the reference's fixed start), because the ARAP covariance and
+// lambda_i both scale with a_i, so on a fine mesh a fixed start outweighs them and the run stops before
+// it converged; the cap keeps coarse meshes on the start that already converged there. The figures:
+// docs/performance.md#fidelity-to-the-cubic-reference.
 inline constexpr double kRhoPerArea = 4.0;
 inline constexpr double kRhoInit = 1e-3;
 inline constexpr double kAbsTol = 1e-5;    // absolute tolerance of both residuals
@@ -117,8 +114,8 @@ class CubicLocalStep {
   // start at v, and w the face's own cotangent weights cot/2 (cotangent_weights.h, the Laplacian's).
   // Each face's share is linear in its three rotations, so the sum folds into one rest vector per
   // vertex m of v's star (m = v included): b_v = sum_m R_m g_vm. Why: this reads #V rotations and
-  // ~7 precomputed vectors per vertex instead of writing and reading back a 3x3 block per face (the
-  // per-face form took 17% of a cubic step on a 43K-vertex mesh). Equal to it up to rounding.
+  // ~7 precomputed vectors per vertex instead of writing and reading back a 3x3 block per face
+  // (docs/performance.md#per-iteration-against-the-cubic-reference). Equal to it up to rounding.
   Eigen::Vector3d global_rhs(int v, const std::vector<Eigen::Matrix3d>& rotation) const {
     Eigen::Vector3d b = Eigen::Vector3d::Zero();
     for (int i = star_start_[v]; i < star_start_[v + 1]; ++i) b.noalias() += rotation[star_[i].vertex] * star_[i].rest;

@@ -14,9 +14,9 @@
 // only (~1e-14) and the plain ratio of two rounding errors is noise.
 //
 // Acceleration (on by default: settings::acceleration). After the fast first steps the plain
-// iteration creeps towards its fixed point along an almost fixed direction (consecutive steps of the
-// 35K bunny have cosine 0.9999, each ~1% shorter than the last), so it takes ~190 steps to reldV <
-// 1e-3. Momentum follows that direction: T is applied at
+// iteration creeps towards its fixed point along an almost fixed direction, each step a little shorter
+// than the last, so it takes many steps to reach the tolerance. Momentum follows that direction: T is
+// applied at
 //   y_k = x_k + beta (x_k - x_{k-1})        (beta: the method's settings::Momentum)
 // and x_{k+1} = T(y_k), a genuine step of Algorithm 1, is what the caller sees; reldV is measured from
 // y_k, so it still says how far one plain step moves, divided by the method's stop_factor
@@ -26,13 +26,10 @@
 // further; when the dot product summed over all vertices is negative, all restart.
 // A step that carries a state of its own from step to step (the cubic method's per-vertex ADMM
 // state) is a map on the vertices and that state together: both are extrapolated, each vertex's
-// state with the vertex (momentum on the vertices alone stopped the cubic method early, short of the
-// plain result: 35K bunny share 0.47 against 0.55).
-// Measured (reldV < 1e-3; Gauss: cube, lambda 4, sigma 4, 1 ADMM round): bunny 35K 189 -> 54 steps,
-// Spot 181 -> 67, armadillo 369 -> 126; cubic (lambda 0.2): bunny 35K 267 -> 42, Spot 117 -> 32,
-// armadillo 564 -> 37; the share of faces within 10 degrees of a cube normal stays within 0.02 of the
-// plain run's. Anderson acceleration and over-relaxation were measured too and lost
-// (docs/performance.md, "Converging in fewer steps").
+// state with the vertex, because momentum on the vertices alone stopped the cubic method short of the
+// plain result. The steps saved, the converged shares against the plain iteration's and the
+// alternatives that lost (Anderson acceleration, over-relaxation) are measured in
+// docs/performance.md#converging-in-fewer-steps.
 //
 // Usage (X: the solver's current vertices, #V by 3):
 //   FixedPointIteration it(num_vertices);

@@ -235,7 +235,7 @@ class GaussSolver {
   // A face's styles: face_style_ s >= 0 is one style of weight face_weight_ (1 unless
   // set_face_weights() gave another), -1 unstyled, and s <= -2 blend b = -2 - s, which has the
   // styles and weights blend_terms_[blend_start_[b] .. blend_start_[b + 1]). Faces with one style,
-  // the common case, step as they did before blends existed.
+  // the common case, skip the blend's sum, so they cost what an unblended face does.
   struct BlendTerm {
     int style;
     double weight;
@@ -276,7 +276,7 @@ class GaussSolver {
   // #F, for two phases of a step that never overlap: first each face's ARAP covariance
   // sum_k w e_k ehat_k^T (face_pass() or the cubic method's, read by the rotation fit), then the
   // right-hand sides of its corners, corner k in column k (assemble_rhs()). One array for both saves
-  // 72 bytes a face (72 MB on the 1M-face mesh of scripts/measure_scale.sh).
+  // a 3x3 block a face (docs/performance.md#set-up-at-scale).
   std::vector<Eigen::Matrix3d> face_scratch_;
   StepTimings timings_;
   ThreadTuner tuner_;
