@@ -1,12 +1,12 @@
 """The quality matrix's table (printed and in docs/quality.md) and the findings it lists: what fails
-issue 26's criteria on today's code, apart from the thresholds (which only say what got worse)."""
+the quality criteria (docs/quality.md) on today's code, apart from the thresholds (which only say what got worse)."""
 import options
 
-GUARD_SHARE_DROP = 0.05  # issue 26: a guarded run's share within 0.05 of the plain run's
-# issue 26: a 0-to-1 gradient gives 0.3 more share at the heavy end than the light one (judged where
+GUARD_SHARE_DROP = 0.05  # a guarded run's share within 0.05 of the plain run's
+# a 0-to-1 gradient gives 0.3 more share at the heavy end than the light one (judged where
 # the style unpainted gains more than that)
 GRADIENT_GAIN = 0.3
-# issue 26: a uniform weight w gives a share within 0.1 of share(0) + w (share(1) - share(0)); weight 0
+# a uniform weight w gives a share within 0.1 of share(0) + w (share(1) - share(0)); weight 0
 # leaves the mesh as it is (no face styled), so share(0) is the input's
 LINEAR_RESPONSE = 0.1
 
@@ -80,7 +80,7 @@ def _guard_findings(r, by_cell):
         found.append(f"{r['new_pairs']} new crossing pairs")
     drop = _plain_share(r, by_cell)
     if r.get("kind") == "closed" and drop is not None and drop < -GUARD_SHARE_DROP:
-        found.append(f"share {r['share']:.3f}, {-drop:.3f} below the plain run's (issue 26: within {GUARD_SHARE_DROP})")
+        found.append(f"share {r['share']:.3f}, {-drop:.3f} below the plain run's (the criterion: within {GUARD_SHARE_DROP})")
     return found
 
 
@@ -92,17 +92,17 @@ def _paint_findings(r, by_cell):
     if "uniform_weight" in r:
         linear = r["share_in"] + r["uniform_weight"] * (plain["share"] - r["share_in"])
         if abs(r["share"] - linear) > LINEAR_RESPONSE:
-            found.append(f"share {r['share']:.3f}, a linear response gives {linear:.3f} (issue 26: within "
+            found.append(f"share {r['share']:.3f}, a linear response gives {linear:.3f} (the criterion: within "
                          f"{LINEAR_RESPONSE})")
     reachable = plain["share"] - plain["share_in"] > GRADIENT_GAIN
     if "share_heavy" in r and reachable and r["share_heavy"] - r["share_light"] < GRADIENT_GAIN:
-        found.append(f"heavy end {r['share_heavy']:.3f} vs light end {r['share_light']:.3f} (issue 26: at least "
+        found.append(f"heavy end {r['share_heavy']:.3f} vs light end {r['share_light']:.3f} (the criterion: at least "
                      f"{GRADIENT_GAIN} more)")
     return found
 
 
 def findings(records):
-    """What fails issue 26's criteria (or any run's basics): {heading: [sentence naming mesh and option]}."""
+    """What fails the quality criteria (or any run's basics): {heading: [sentence naming mesh and option]}."""
     by_cell = _cells(records)
     found = {"Crashes, refusals, results not finite or not bounded": [], "Avoid Self-Intersections": [],
              "Painted strength": [], "Not converged within the step cap": []}

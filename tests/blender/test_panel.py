@@ -94,7 +94,7 @@ def test_a_custom_normal_is_one_row_with_its_number_and_x_y_z(addon):
 
 
 def test_a_slot_name_gets_its_row_and_the_region_only_where_both_fit(addon):
-    """Issue 26: in half of the list's row, names were cut to "Stre...". At the default sidebar width a
+    """In half of the list's row, names were cut to "Stre...". At the default sidebar width a
     long name takes the row (the Region as its icon); a short one leaves room for the Region's name."""
     obj = helpers.activate(helpers.suzanne(levels=0))
     helpers.add_group(obj, "Head", range(10))
@@ -144,7 +144,7 @@ def _settling(lines):
 
 
 def test_a_live_run_says_in_words_how_far_it_has_settled_and_the_numbers_in_the_tooltip(addon):
-    """Issue 26: "change 2.4e-2 \u2192 1.0e-3" read as noise; now "settling, 80%", then "Converged"."""
+    """"change 2.4e-2 \u2192 1.0e-3" read as noise; now "settling, 80%", then "Converged"."""
     obj = helpers.suzanne(levels=0)
     helpers.add_slot(obj, 'CUBE')
     live = helpers.live_run([obj])

@@ -262,7 +262,7 @@ def _release(d, at):
 
 
 def header_fits(d, name):
-    """Issue 26: during a drag the header was cut off and named two meanings of Esc. Checks ``name`` =
+    """During a drag the header was cut off and named two meanings of Esc. Checks ``name`` =
     the header's text (the live operator's status line) has one Esc and fits the 3D view's header at
     the window's width; a screenshot of the header goes to BUILD/screenshots/handle_drag_header.png."""
     from gauss_stylization.view.sidebar import text_width

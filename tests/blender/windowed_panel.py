@@ -392,10 +392,11 @@ def _rows_that_differ(a, b, below):
 
 
 def bake_start_keeps_the_panels_in_place(name):
-    """Issue 26: for a second or two after a bake started, the sub-panels' headers were drawn over
+    """For a second or two after a bake started, the sub-panels' headers were drawn over
     Stylize, Output and Pin Group: the bake's box pushes them down, Blender slides them there at its
     next redraws, and the bake's first frame came before those and held the screen as it was. Now what
-    the sidebar shows while the first frame is baked (its last drawing before) has them in place."""
+    the sidebar shows while the first frame is baked (its last drawing before) has them in place, and
+    they stay there while the frame count grows (past 10, where a longer count wrapped its line)."""
     obj = bpy.data.objects[name]
     obj.hide_set(True)
     with d.override():
@@ -413,7 +414,7 @@ def bake_start_keeps_the_panels_in_place(name):
                                             filepath=os.path.join(folder, "capsule.pc2"))
     started = time.monotonic()
     deadline = started + 60.0
-    while time.monotonic() < deadline and not any(done and done >= 3 for _at, _pixels, done in frames.frames):
+    while time.monotonic() < deadline and not any(done and done >= 12 for _at, _pixels, done in frames.frames):
         yield 0.1
     sidebar().tag_redraw()
     yield 0.5
@@ -432,6 +433,12 @@ def bake_start_keeps_the_panels_in_place(name):
         d.check("while a bake's first frame is baked the sidebar shows its panels in place",
                 rows <= 4,  # a glitch moves hundreds
                 "%d rows differ from the settled sidebar (%d drawings before it)" % (rows, len(before_first)))
+        # The box kept its height as the count grew ("frame 9" to "frame 10" wrapped its line once, and
+        # the panels below slid down while the bake held the screen): every later drawing is the same.
+        moved = [(round(at - started, 2), done, _rows_that_differ(before_first[-1], pixels, top))
+                 for at, pixels, done in frames.frames if done]
+        d.check("while the bake goes on the panels below its box stay where they were",
+                moved and all(rows <= 4 for _at, _done, rows in moved), str(moved))
     bpy.data.objects.remove(capsule)
     bpy.data.objects.remove(bpy.data.objects["Rig"])
     obj.hide_set(False)
@@ -439,7 +446,7 @@ def bake_start_keeps_the_panels_in_place(name):
 
 
 def slot_names_and_normals_fit(name):
-    """Issue 26: slot names were cut to "Stre..." (half of the list's row) and the Custom normals ran
+    """Slot names were cut to "Stre..." (half of the list's row) and the Custom normals ran
     their numbers together ("-0.79-0.19 0.58"). A screenshot of both, and their texts against the row."""
     obj = d.activate(bpy.data.objects[name])
     settings = obj.gauss_stylization

@@ -167,7 +167,7 @@ def find_sidebar_button(idname):
 
 
 def crossing_faces_button(name, _prepared):
-    """Issue 26: an artist checks a print before exporting it. Spot stylized at lambda 20 without the
+    """An artist checks a print before exporting it. Spot stylized at lambda 20 without the
     guard crosses itself: the Solver panel's Select Crossing Faces opens Edit Mode with exactly the
     crossing faces selected (a screenshot: crossing_faces.png); with the guard, it finds none."""
     from gauss_stylization.mesh import crossings

@@ -1,7 +1,7 @@
 """Avoid Self-Intersections' cost is stated once, measured, in docs/performance.md ("The guard's cost");
 every other place that speaks of it (the README, the setting's tooltip, the solver's docstring) points
-there and gives no figure of its own, so a new measurement changes one sentence (issue 26: the tooltip,
-the README and the solver had three different figures)."""
+there and gives no figure of its own, so a new measurement changes one sentence (the tooltip,
+the README and the solver once had three different figures)."""
 import re
 
 from conftest import REPO

@@ -89,7 +89,9 @@ class _BakeOperator:
             self._box_drawn = now
         elif self._box_drawn is not None and now >= self._box_drawn + PANELS_SETTLE:
             self._panels_settled = True
-        return ("Baking to a point cache", [("%s: %s" % (self._obj_name, self._progress_text()), 'FILE_CACHE')],
+        # The frame count on a line of its own: "Name: frame 9 of 40" wrapped once the count grew a
+        # digit, the box grew a line and the panels below slid down while the bake held the screen.
+        return ("Baking to a point cache", [(self._obj_name, 'FILE_CACHE'), (self._progress_text(), 'BLANK1')],
                 ("Esc: cancel (nothing is written)",))
 
     def _progress_text(self):
