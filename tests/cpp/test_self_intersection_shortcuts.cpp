@@ -371,6 +371,16 @@ TEST(SelfIntersectionShortcuts, NearlyCoplanarNeighboursAndSliversAsBruteForce) 
     for (Vector3d& p : C) p.z() += u(rng);
     EXPECT_FALSE(guard_agrees(m, m.X, C, "lifted by " + std::to_string(amount)));
   }
+  // A dent whose tail lifts faces by 1e-15 and less: next to each other, sharing a corner with edges
+  // in line through it, they are one plane to rounding, not a crossing (triangles_cross took them for
+  // one before it treated planes within 1e-9 radians as one).
+  const Mesh fine = sheet(32, 0.05);
+  for (const Vector3d centre : {Vector3d(-0.00413, -0.0164, 0), Vector3d(0.0071, 0.0033, 0)}) {
+    Points C = fine.X;
+    for (Vector3d& p : C) p.z() -= 0.004 * std::exp(-(p - centre).head<2>().squaredNorm() / (0.003 * 0.003));
+    EXPECT_EQ(gauss::count_self_intersections(fine.faces, C), 0);
+    EXPECT_FALSE(guard_agrees(fine, fine.X, C, "a dent's tail"));
+  }
   int with_contact = 0;
   for (unsigned seed = 0; seed < 80; ++seed) {
     std::mt19937 rng(seed);
@@ -429,10 +439,7 @@ TEST(SelfIntersectionShortcuts, FlatPatchesOfASheetPressedOntoAnotherAsBruteForc
   // A fine sheet (1152 faces) 0.004 above a second one: the hierarchy's nodes hold faces of both,
   // facing the same way, but not connected, so not a flat patch. A narrow bump pressed down at random
   // places stays clear of the lower sheet, just touches it or passes through it in a few faces, inside one node or
-  // across nodes. (The bump is exactly 0 beyond its radius: triangles_cross can call two faces that
-  // share a corner, lie within rounding of one plane and have edges in line through that corner
-  // crossing, a false positive the guard's flat star does not make, so a bump's 1e-15 tail would make
-  // brute force disagree for the wrong reason.)
+  // across nodes.
   Mesh m = sheet(24, 0.05);
   const int offset = static_cast<int>(m.X.size());
   const int faces = static_cast<int>(m.faces.size());
