@@ -375,7 +375,7 @@ TEST(SelfIntersectionShortcuts, NearlyCoplanarNeighboursAndSliversAsBruteForce) 
   // in line through it, they are one plane to rounding, not a crossing (triangles_cross took them for
   // one before it treated planes within 1e-9 radians as one).
   const Mesh fine = sheet(32, 0.05);
-  for (const Vector3d centre : {Vector3d(-0.00413, -0.0164, 0), Vector3d(0.0071, 0.0033, 0)}) {
+  for (const Vector3d& centre : {Vector3d(-0.00413, -0.0164, 0), Vector3d(0.0071, 0.0033, 0)}) {
     Points C = fine.X;
     for (Vector3d& p : C) p.z() -= 0.004 * std::exp(-(p - centre).head<2>().squaredNorm() / (0.003 * 0.003));
     EXPECT_EQ(gauss::count_self_intersections(fine.faces, C), 0);
@@ -456,7 +456,9 @@ TEST(SelfIntersectionShortcuts, FlatPatchesOfASheetPressedOntoAnotherAsBruteForc
         if (r2 < 1) C[v].z() -= depth * (1 - r2) * (1 - r2);
       }
       const bool contact = guard_agrees(m, m.X, C, "pressed " + std::to_string(depth) + " at " + std::to_string(press));
-      if (depth != 0.0042) EXPECT_EQ(contact, depth > 0.004);  // 0.0042 reaches the sheet below or not
+      if (depth != 0.0042) {  // 0.0042 reaches the sheet below or not
+        EXPECT_EQ(contact, depth > 0.004);
+      }
     }
   }
 }
@@ -510,7 +512,9 @@ TEST(SelfIntersectionShortcuts, AContactAlreadyAtSafeHoldsOnlyItsCornersAndEnds)
   EXPECT_GT(held, 0);
   EXPECT_LT(held, static_cast<int>(X.size()) / 2) << "held back far more than the contact";
   for (size_t v = 0; v < X.size(); ++v)  // three cells (0.005 each) from the line where they cross
-    if (std::abs(safe[v].y()) > 0.015) EXPECT_EQ(X[v], C[v]) << v;
+    if (std::abs(safe[v].y()) > 0.015) {
+      EXPECT_EQ(X[v], C[v]) << v;
+    }
 }
 
 // --- Threads. ---
