@@ -290,7 +290,7 @@ TEST(SelfIntersectionShortcuts, AFanWoundTwiceAroundItsCentreIsCaught) {
       if ((s.X[v] - s.X[centre] - d * (0.04 / 6)).norm() < 1e-9) ring.push_back(v);
   ASSERT_EQ(ring.size(), 6u);
   Points C = s.X;
-  for (int k = 0; k < 6; ++k) {  // ring vertex k goes to the angle of 2k sixths of a turn... twice round
+  for (int k = 0; k < 6; ++k) {  // the six neighbours spread over two turns, rising then falling
     const double turn = 4 * M_PI * k / 6 + 0.1, h = k < 3 ? k / 3.0 : (6 - k) / 3.0;
     C[ring[k]] = s.X[centre] + Vector3d(0.006 * std::cos(turn), 0.006 * std::sin(turn), 0.003 * h);
   }
