@@ -164,7 +164,7 @@ TEST(SelfIntersectionGuard, OneAndTwoThreadsAreBitIdentical) {
     GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), {}, nullptr, 10.0);
     s.set_styles({gauss::PreferenceFunction(gauss::preset_style("cube"))});
     s.set_avoid_self_intersections(true);
-    held.push_back(run(s, 4));
+    held.push_back(run(s, 3));
     result.push_back(vertices(s));
   }
   gauss::parallel::set_max_threads(saved);
