@@ -83,13 +83,29 @@ int64_t count_self_intersections(const std::vector<std::array<int, 3>>& faces, c
 SelfIntersectionGuard::SelfIntersectionGuard(const MeshTopology& topo, const std::vector<Vector3d>& X0)
     : topo_(&topo),
       bvh_(topo.faces, X0),
-      closed_star_(X0.size(), 1),
+      star_kind_(X0.size(), kClosedStar),
       flat_star_(X0.size(), 0),
       candidate_(X0.size()),
       step_fraction_(X0.size(), 1.0f),
       round_stamp_(X0.size(), 0) {
-  for (size_t e = 0; e < topo.edges.size(); ++e)
-    if (topo.edge_slot_start[e + 1] - topo.edge_slot_start[e] != 2) closed_star_[topo.edges[e][0]] = closed_star_[topo.edges[e][1]] = 0;
+  // A star is one fan around its corner, closed or open, only if each of its edges has two faces
+  // that run along it in opposite directions, but for the open fan's two boundary edges. Two fans
+  // sharing one corner (two sheets touching there), a non-manifold edge or faces oriented against
+  // each other can cover a point twice with every wedge turning the right way and their angles
+  // summing to less than a turn: such a star is never flat, its pairs are always tested.
+  std::vector<uint8_t> boundary(X0.size(), 0);
+  for (size_t e = 0; e < topo.edges.size(); ++e) {
+    const int slots = topo.edge_slot_start[e + 1] - topo.edge_slot_start[e];
+    const int* slot = &topo.edge_slots[topo.edge_slot_start[e]];
+    const bool opposite =
+        slots == 2 && topo.face_edge_sign[slot[0] / 3][slot[0] % 3] != topo.face_edge_sign[slot[1] / 3][slot[1] % 3];
+    for (int v : topo.edges[e]) {
+      if (slots == 1 && boundary[v] < 255) ++boundary[v];
+      if (slots > 2 || (slots == 2 && !opposite)) star_kind_[v] = kNeverFlat;
+    }
+  }
+  for (size_t v = 0; v < X0.size(); ++v)
+    if (star_kind_[v] != kNeverFlat && boundary[v] > 0) star_kind_[v] = boundary[v] == 2 ? kOpenFan : kNeverFlat;
 }
 
 void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, const std::vector<int>* faces) {
@@ -116,7 +132,7 @@ void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, cons
       const Vector3d a = X[f[(k + 1) % 3]] - X[v], b = X[f[(k + 2) % 3]] - X[v];
       const double turn = a.cross(b).dot(n);
       flat = turn > 0;
-      if (!closed_star_[v]) {
+      if (star_kind_[v] == kOpenFan) {
         const Vector3d pa = a - a.dot(n) / n.squaredNorm() * n, pb = b - b.dot(n) / n.squaredNorm() * n;
         winding += std::atan2(turn / n.norm(), pa.dot(pb));
         continue;
@@ -124,7 +140,7 @@ void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, cons
       if (i == begin) ray = a;
       covering += a.cross(ray).dot(n) >= 0 && ray.cross(b).dot(n) > 0;
     }
-    flat_star_[v] = flat && (closed_star_[v] ? covering == 1 : winding < kTwoPi);
+    flat_star_[v] = flat && star_kind_[v] != kNeverFlat && (star_kind_[v] == kClosedStar ? covering == 1 : winding < kTwoPi);
   };
   if (faces == nullptr) {
     parallel::for_each(topo.num_vertices, parallel::kMinParallelItems, star);

@@ -118,8 +118,12 @@ bool triangles_cross(const Triangle& a, const Triangle& b, int shared) {
   if (one_side(db) || db.isZero(0.0)) return false;  // apart, or coplanar (not counted, as in Blender)
   const Vector3d da = plane_sides(nb, b.col(0), a, shared, on_plane_tolerance(nb, a, b));
   if (one_side(da) || da.isZero(0.0)) return false;
+  // Planes within kParallel radians of each other are one plane: a corner within rounding of the other
+  // plane (plane_sides) could then lie anywhere across their common line, far from it, and two faces
+  // of one gently curved region, sharing a corner, would cross by rounding.
+  constexpr double kParallel = 1e-9;
   const Vector3d u = na.cross(nb);
-  if (u.isZero(0.0)) return false;  // parallel planes that both straddle: rounding of a coplanar pair
+  if (!(u.norm() > kParallel * na.norm() * nb.norm())) return false;
   // Both intervals on the planes' common line, measured from one point; a shared corner lies on the
   // line at 0 in both.
   double lo_a, hi_a, lo_b, hi_b;

@@ -29,8 +29,10 @@
 // Cost: most pairs whose boxes overlap are neighbours sharing a corner. Two faces around a corner can
 // only cross where the corner's star folds over: projected onto the plane normal to the star's
 // (area-weighted) normal, a star whose faces all keep their orientation and wind around the corner
-// once (an open star: less than once) covers no point twice, so none of its faces cross. Only the
-// pairs around the other corners are tested.
+// once (an open star: less than once) covers no point twice, so none of its faces cross. That holds
+// for one fan only: a star of two fans (two sheets meeting in the corner), with a non-manifold edge or
+// faces oriented against each other is never taken as flat. Only the pairs around the other corners
+// are tested.
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
@@ -110,7 +112,10 @@ class SelfIntersectionGuard {
 
   const MeshTopology* topo_ = nullptr;
   FaceBvh bvh_;
-  std::vector<uint8_t> closed_star_;      // #V: every edge at the vertex has two faces
+  // #V: the vertex's star is one closed fan, one open fan, or neither (two fans sharing the corner, a
+  // non-manifold edge, faces oriented against each other): never taken as flat.
+  enum : uint8_t { kClosedStar, kOpenFan, kNeverFlat };
+  std::vector<uint8_t> star_kind_;
   std::vector<uint8_t> flat_star_;        // #V, per check
   std::vector<uint64_t> allowed_;         // sorted: in contact at the start
   std::vector<uint64_t> crossing_;        // sorted: crossing at the start, and the pairs crossings slid into

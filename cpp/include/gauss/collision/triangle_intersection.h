@@ -2,7 +2,7 @@
 // Whether two triangles of one mesh pass through each other, in the sense Blender's 3D-Print toolbox
 // counts (mathutils.bvhtree.BVHTree.overlap of a mesh with itself): the triangles cross along a
 // segment of positive length. Touching in a shared vertex or edge is not crossing, nor is lying in one
-// plane (Blender's test skips coplanar pairs too).
+// plane (Blender's test skips coplanar pairs too; planes less than 1e-9 radians apart count as one).
 //
 //   a, b   the two triangles' corners (3 each), in one frame
 //   shared the number of corners they share (0, 1 or 2; found by index by the caller): a shared
