@@ -33,6 +33,13 @@
 # rebuilds what changed; with ccache (scripts/install_deps.sh installs it) the module trees share the
 # library's objects with the test trees.
 set -euo pipefail
+# --modules: only the Python modules (for a change to the bindings or the build of the module).
+only_modules=0
+case "${1:-}" in
+  --modules) only_modules=1 ;;
+  "") ;;
+  *) echo "usage: bash scripts/cross_check.sh [--modules]" >&2; exit 2 ;;
+esac
 cd "$(dirname "$0")/.."
 root="$PWD"
 cache="${XDG_CACHE_HOME:-$HOME/.cache}/gauss_stylization/cross"
@@ -45,13 +52,14 @@ flock 9
 fail() { echo "cross_check: FAILED: $*" >&2; exit 1; }
 # step LOG WHAT COMMAND...: runs COMMAND with its output in LOG; on failure shows the log's end and stops.
 step() {
-  local log="$1" what="$2"; shift 2
+  local log="$1" what="$2" start=$SECONDS; shift 2
   echo "== $what" >&2
   mkdir -p "$(dirname "$log")"
   if ! "$@" > "$log" 2>&1; then
     tail -n 40 "$log" >&2
     fail "$what (full log: $log)"
   fi
+  echo "   ($((SECONDS - start)) s)" >&2
 }
 
 # ---- What the check needs from Debian ---------------------------------------------------------------
@@ -128,6 +136,7 @@ windows_args=(-DCMAKE_TOOLCHAIN_FILE="$root/cmake/toolchains/mingw-w64-x86_64.cm
   -DCMAKE_CXX_EXTENSIONS=OFF -DCMAKE_CXX_FLAGS="-Werror=vla")
 macos_args=(-DCMAKE_TOOLCHAIN_FILE="$root/cmake/toolchains/zig-macos.cmake" -DGAUSS_ZIG_BIN="$zig_bin"
   -DCMAKE_CXX_FLAGS="-Werror=vla")
+if [ "$only_modules" = 0 ]; then
 build_platform windows-x64 "${windows_args[@]}" -DGAUSS_MESH_DIR:STRING="Z:$meshes"
 for arch in aarch64 x86_64; do
   build_platform "macos-$arch" "${macos_args[@]}" -DGAUSS_MACOS_ARCH="$arch"
@@ -193,6 +202,8 @@ sys.exit(not (f["format"] == "Mach-O" and f["arch"] == sys.argv[1] and f["minos"
     "$want" "$minos" "$facts" || fail "$bin is not a Mach-O $want executable for macOS $minos: $facts"
   echo "$label (zig): built, minos $minos"
 done
+
+fi  # the C++ tests
 
 # ---- The Python module, for each Python the extension zips are made for -------------------------------------
 pythons="$(cd "$root/scripts" && python3 -c 'import package_addon as p

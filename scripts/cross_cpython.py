@@ -70,12 +70,14 @@ def apt(cache):
     if not os.path.isfile(sources):
         os.makedirs(os.path.join(state, "lists", "partial"), exist_ok=True)
         os.makedirs(os.path.join(state, "archives", "partial"), exist_ok=True)
+        os.makedirs(os.path.join(state, "cache"), exist_ok=True)
         with open(sources, "w", encoding="utf-8") as handle:
             for suite in sorted({row["suite"] for row in pins().values()}):
                 handle.write("deb-src [signed-by=%s] %s %s main\n" % (KEYRING, ARCHIVE, suite))
                 handle.write("deb [arch=amd64 signed-by=%s] %s %s main\n" % (KEYRING, ARCHIVE, suite))
     options = ["-o", "Dir::Etc::SourceList=" + sources, "-o", "Dir::Etc::SourceParts=/dev/null",
                "-o", "Dir::State::Lists=" + os.path.join(state, "lists"),
+               "-o", "Dir::Cache=" + os.path.join(state, "cache"),
                "-o", "Dir::Cache::Archives=" + os.path.join(state, "archives"),
                "-o", "Debug::NoLocking=1", "-o", "APT::Sandbox::User=root", "-q"]
     return options
