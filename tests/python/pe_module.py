@@ -8,16 +8,18 @@ import struct
 SECTION_RVA, SECTION_OFFSET, FILE_ALIGN = 0x1000, 0x200, 0x200
 
 
-def pe_module(python="3.11"):
-    dll = ("python%s.dll" % python.replace(".", "")).encode() + b"\0"
+def pe_module(python="3.11", also=()):
+    """also: more DLL names to import (each with an empty lookup table)."""
+    dlls = [("python%s.dll" % python.replace(".", ""))] + list(also)
     export_name, module_name = b"PyInit_gauss_core\0", b"gauss_core.pyd\0"
     marker = ("gauss_core for CPython %s" % python).encode() + b"\0"
-    # Section layout: import descriptors (one + terminator), lookup table, DLL name, export directory,
-    # its tables and names, the marker.
+    # Section layout: import descriptors (one per DLL + terminator), an empty lookup table, the DLL
+    # names, export directory, its tables and names, the marker.
     imports = 0
-    lookup = imports + 40
+    lookup = imports + 20 * (len(dlls) + 1)
+    names_of_dlls = b"".join(name.encode() + b"\0" for name in dlls)
     dll_at = lookup + 16
-    exports = dll_at + len(dll) + (-len(dll)) % 4
+    exports = dll_at + len(names_of_dlls) + (-len(names_of_dlls)) % 4
     functions = exports + 40
     names = functions + 4
     ordinals = names + 4
@@ -27,9 +29,12 @@ def pe_module(python="3.11"):
     size = marker_at + len(marker)
     rva = lambda offset: SECTION_RVA + offset  # noqa: E731
     section = bytearray(size)
-    struct.pack_into("<IIIII", section, imports, rva(lookup), 0, 0, rva(dll_at), rva(lookup))
+    at = dll_at
+    for i, name in enumerate(dlls):
+        struct.pack_into("<IIIII", section, imports + 20 * i, rva(lookup), 0, 0, rva(at), rva(lookup))
+        at += len(name) + 1
     struct.pack_into("<Q", section, lookup, 0)  # no functions imported by name: an empty lookup table
-    section[dll_at:dll_at + len(dll)] = dll
+    section[dll_at:dll_at + len(names_of_dlls)] = names_of_dlls
     struct.pack_into("<IIHHIIIIIII", section, exports, 0, 0, 0, 0, rva(module_at), 1, 1, 1,
                      rva(functions), rva(names), rva(ordinals))
     struct.pack_into("<I", section, functions, SECTION_RVA)
@@ -53,7 +58,7 @@ def pe_module(python="3.11"):
                      0x100000, 0x1000, 0x100000, 0x1000, 0, 16)
     directories = optional + 112
     struct.pack_into("<II", header, directories, rva(exports), marker_at - exports)  # export table
-    struct.pack_into("<II", header, directories + 8, rva(imports), 40)            # import table
+    struct.pack_into("<II", header, directories + 8, rva(imports), 20 * (len(dlls) + 1))  # import table
     table = optional + optional_size
     struct.pack_into("<8sIIIIIIHHI", header, table, b".rdata", size, SECTION_RVA, raw_size, SECTION_OFFSET,
                      0, 0, 0, 0, 0x40000040)
