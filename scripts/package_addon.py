@@ -286,7 +286,7 @@ def check_wheel_module(wheel_path, python, platform):
     wanted = BINARY_FOR_PLATFORM[platform]
     problems = []
     if (found["format"], found["arch"]) != wanted:
-        problems.append("it is a %s file, the tag %s needs %s %s" % (binary_facts.describe(found), tag, *wanted))
+        problems.append("it is %s, the tag %s needs %s %s" % (binary_facts.describe(found), tag, *wanted))
     if found["python"] != python:
         problems.append("it was built for Python %s, the tag cp%s needs %s"
                         % (found["python"] or "(unknown: no BUILT_FOR text, an old build)", python.replace(".", ""), python))

@@ -93,7 +93,7 @@ def test_a_renamed_linux_wheel_is_refused(tmp_path):
     assert result.returncode != 0
     message = result.stderr
     assert "refusing %s" % renamed.name in message, message
-    assert "ELF64 x86_64 file, the tag win_amd64 needs PE32+ x86_64" in message, message
+    assert "it is ELF64 x86_64, the tag win_amd64 needs PE32+ x86_64" in message, message
     assert "its file name says another Python or system than the tag" in message, message
     assert not (tmp_path / "zips").exists() or not list((tmp_path / "zips").glob("*extension*")), "no zip may be made"
 
