@@ -162,7 +162,7 @@ if [ -z "$passed" ]; then
   fail "windows-x64: gauss_tests.exe ended (status $status) without gtest's summary (full log: $log)"
 fi
 # Each skip with its reason: gtest prints "FILE:LINE: Skipped", the message, then "[  SKIPPED ] TEST".
-skips="$(tr -d '\r' < "$log" | awk '/: Skipped$/ { getline reason; next_reason = reason }
+skips="$(tr -d '\r' < "$log" | awk '/: Skipped$/ { getline reason; next_reason = reason == "" ? "(no reason given)" : reason }
   /^\[  SKIPPED \] [A-Za-z]/ && next_reason != "" { print $4 "\t" next_reason; next_reason = "" }')"
 skipped=0 refused=()
 while IFS=$'\t' read -r test reason; do
