@@ -38,6 +38,7 @@ DLLTOOL = "x86_64-w64-mingw32-dlltool"
 EXPORT = re.compile(r"PyAPI_(FUNC|DATA)\(((?:[^()]|\([^()]*\))*)\)\s*\(?\s*([A-Za-z_]\w*)")
 # Feature-test macros configure defines on Linux and leaves out on macOS (configure.ac: define_xopen_source=no
 # for Darwin), which would hide BSD parts of macOS's own headers.
+STAMP = " exports _?Py*"  # the rule that made the files: a change remakes them
 NOT_ON_MACOS = ("_POSIX_C_SOURCE", "_XOPEN_SOURCE", "_XOPEN_SOURCE_EXTENDED")
 
 
@@ -137,7 +138,10 @@ def exports(include):
                 with open(os.path.join(folder, name), encoding="utf-8", errors="replace") as handle:
                     text = re.sub(r"/\*.*?\*/", " ", handle.read(), flags=re.S)
                 for kind, _, symbol in EXPORT.findall(text):
-                    found[symbol] = kind
+                    # Only CPython's own names: pthread_stubs.h declares pthread_* for WASI with PyAPI_FUNC,
+                    # which are no exports of pythonXY.dll and would clash with winpthread's.
+                    if re.match(r"_?Py", symbol):
+                        found[symbol] = kind
     return found
 
 
@@ -148,7 +152,7 @@ def prepare(cache, python, target):
     stamp = os.path.join(base, target + ".done")
     dll = "python%s" % python.replace(".", "")
     library = os.path.join(base, "lib%s.dll.a" % dll)
-    if os.path.isfile(stamp) and open(stamp, encoding="utf-8").read() == pin["sha256"]:
+    if os.path.isfile(stamp) and open(stamp, encoding="utf-8").read() == pin["sha256"] + STAMP:
         return include, library
     tarball, deb = downloads(cache, python, pin)
     shutil.rmtree(include, ignore_errors=True)
@@ -184,7 +188,7 @@ def prepare(cache, python, target):
                          "   CPython %s), for compiling against on macOS. */\n" % (os.path.basename(deb), python))
             handle.write(text)
     with open(stamp, "w", encoding="utf-8") as handle:
-        handle.write(pin["sha256"])
+        handle.write(pin["sha256"] + STAMP)
     return include, library
 
 
