@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Proves on this Debian 12 (x86_64) machine what it can of Windows and macOS:
 #   - the C++ core (gauss_lib, gauss_tools) and the C++ test suite (gauss_tests) cross-compiled for
-#     Windows x64 with MinGW-w64, linked statically, and run whole under wine;
+#     Windows x64 with MinGW-w64, linked statically, and run under wine (all
+#     but the slow cases of tests/cpp/slow_tests.txt);
 #   - the same compiled and linked for macOS arm64 and x86_64 with zig (no Apple SDK; they cannot run
 #     here), for the release's minimum macOS (pyproject.toml's MACOSX_DEPLOYMENT_TARGET);
 #   - the Python module gauss_core, as it ships, for every Python an extension zip is made for (3.11,
@@ -150,11 +151,13 @@ exe="$root/build-cross-windows-x64/gauss_tests.exe"
 log="$root/build-cross-windows-x64/tests.log"
 echo "== windows-x64: running gauss_tests.exe under wine" >&2
 mkdir -p "$cache/wine-prefix"
+# Without the slow cases (tests/cpp/slow_tests.txt), as the sanitizer run: wine adds its own slowness.
+source "$root/scripts/slow_cpp_tests.sh"
 # No Mono or Gecko prompts while the prefix is made; no wine debug chatter in the log.
 status=0
 (cd "$root/build-cross-windows-x64" &&
   WINEPREFIX="$cache/wine-prefix" WINEDEBUG=-all WINEDLLOVERRIDES="mscoree,mshtml=" \
-    "$wine" "$exe" --gtest_color=no) > "$log" 2>&1 || status=$?
+    "$wine" "$exe" --gtest_color=no --gtest_filter="$SLOW_CPP_TESTS_FILTER") > "$log" 2>&1 || status=$?
 passed=$(tr -d '\r' < "$log" | sed -n 's/^\[  PASSED  \] \([0-9]*\) tests\{0,1\}\..*/\1/p')
 failed=$(tr -d '\r' < "$log" | sed -n 's/^\[  FAILED  \] \([0-9]*\) tests\{0,1\}, listed below.*/\1/p')
 if [ -z "$passed" ]; then

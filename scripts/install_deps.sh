@@ -1,16 +1,17 @@
 #!/usr/bin/env bash
-# Installs what the project needs from Debian 12 (run as root) and the pinned PyPI tools (a venv, see
+# Installs what the project needs from Debian 12 (run as root) and the pinned PyPI tools (two venvs, see
 # below); does nothing if all is present. Prints nothing else on success, except the tools venv's path
-# when called with --print-tools-venv.
+# when called with --print-tools-venv, the farm venv's with --print-farm-venv.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 packages=(
-  build-essential binutils cmake git
+  build-essential binutils cmake git ccache
   libeigen3-dev python3-dev python3-numpy python3-pytest python3-venv python3-pip libgtest-dev
   pybind11-dev  # 2.10: only for tests/python/test_numpy_mismatch.py; builds use PyPI's (pinned) pybind11
   blender xvfb xauth
   shellcheck  # actionlint checks the release workflow's run: scripts with it
   clang libclang-rt-14-dev
+  slurm-wlm munge nodejs  # tests/farm: a single-node Slurm cluster, the Flamenco job type's syntax (node --check)
 )
 missing=()
 for p in "${packages[@]}"; do
@@ -47,3 +48,19 @@ if [ "$(cat "$tools_venv/pins.txt" 2>/dev/null)" != "$pins" ]; then
 fi
 exec 9>&-
 if [ "${1:-}" = "--print-tools-venv" ]; then echo "$tools_venv"; fi
+
+# The farm tests' PyPI tools (packaging/farm-requirements.txt: openjd-cli), in a venv of their own, so their
+# pins never remake the tools venv that builds use; (re)made the same way, when a pin changes.
+farm_venv="${GAUSS_FARM_VENV:-${XDG_CACHE_HOME:-$HOME/.cache}/gauss_stylization/farm-venv}"
+farm_pins="$(grep -v '^\s*\(#\|$\)' packaging/farm-requirements.txt)"
+exec 9> "$farm_venv.lock"
+flock 9
+if [ "$(cat "$farm_venv/pins.txt" 2>/dev/null)" != "$farm_pins" ]; then
+  echo "== making the farm venv $farm_venv" >&2
+  rm -rf "$farm_venv"
+  /usr/bin/python3 -m venv "$farm_venv"
+  "$farm_venv/bin/python" -m pip install -q --disable-pip-version-check -r packaging/farm-requirements.txt
+  printf '%s' "$farm_pins" > "$farm_venv/pins.txt"
+fi
+exec 9>&-
+if [ "${1:-}" = "--print-farm-venv" ]; then echo "$farm_venv"; fi

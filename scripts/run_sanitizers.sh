@@ -21,12 +21,12 @@ export OMP_NUM_THREADS=2
 export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1:strict_string_checks=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
-# Three cases run hundreds of steps on 35K- to 43K-vertex meshes (minutes each under ASan); every
-# code path they take also runs, on smaller meshes, in the cases that remain.
-long_runs='Slivers\.WatertightBunnyKeepsItsStyleFor300Steps|Acceleration\.TheCubicMethodKeepsRhoAtAnExtrapolatedState|Acceleration\.TheCubicMethodsStopIsNotEarlyOnAFineMesh'
+# The slow cases (tests/cpp/slow_tests.txt) run for minutes each under ASan; every code path they take
+# also runs, on smaller meshes, in the cases that remain.
+source "$repo/scripts/slow_cpp_tests.sh"
 
 status=0
-(cd "$build" && ctest --output-on-failure -j "$jobs" --timeout 600 -E "$long_runs") || status=$?
+(cd "$build" && ctest --output-on-failure -j "$jobs" --timeout 600 -E "$SLOW_CPP_TESTS_REGEX") || status=$?
 
 # Belt and braces: a report in a test that still passed (none should exist) fails the run too.
 log="$build/Testing/Temporary/LastTest.log"

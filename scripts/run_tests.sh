@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # The project's tests.
 #   bash scripts/run_tests.sh          everything (the README's test command, and CI's): C++ (ctest), the
-#                                      Python module (pytest, also against numpy 2), the Blender add-on
+#                                      Python module (pytest, also against numpy 2), the quality matrix's
+#                                      fast subset (scripts/quality_matrix.py --fast), the Blender add-on
 #                                      headless and in a real window (xvfb, Debian's Blender 3.4.1), the
+#                                      farm engines (a single-node Slurm, openjd-cli, Flamenco's job type), the
 #                                      headless suite in every Blender release PyPI serves as a bpy wheel,
 #                                      the Windows/macOS cross check, the C++ tests under ASan+UBSan, a
 #                                      bounded fuzzing run
 #   bash scripts/run_tests.sh --fast   the quick tier for a developer changing a file: ctest without its
-#                                      slow cases, pytest, and the headless Blender suite (a couple of
-#                                      minutes with a warm build)
+#                                      slow cases, pytest, the quality matrix's fast subset, and the
+#                                      headless Blender suite (a couple of minutes with a warm build)
 # Exits non-zero if any part fails; a summary of all parts is printed last.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -19,11 +21,13 @@ case "${1:-}" in
   *) echo "usage: bash scripts/run_tests.sh [--fast]" >&2; exit 2 ;;
 esac
 bash scripts/install_deps.sh || exit 1
+# One compile of each source for every tree that builds it with the same flags (the main build, the wheels
+# for each Python, the pybind11 2.10 module of the numpy 2 suite): ccache serves the repeats.
+export CMAKE_CXX_COMPILER_LAUNCHER=ccache CMAKE_C_COMPILER_LAUNCHER=ccache
 bash scripts/build.sh build || exit 1
 
-# C++ cases that take seconds each (long runs to convergence or to 300+ steps on the larger meshes, the
-# fill of orderings on subdivided meshes); the fast tier leaves them to the full run.
-SLOW_CPP_TESTS='Slivers\.WatertightBunny|Acceleration\.TheCubicMethodKeepsRho|Acceleration\.TheCubicMethodsStopIsNotEarly|NormalFieldFamily\.ReachesTheTolerance|NestedDissectionFill\.'
+# The slow C++ cases (tests/cpp/slow_tests.txt), which the fast tier leaves to the full run.
+source scripts/slow_cpp_tests.sh
 
 results=()
 failed=0
@@ -37,16 +41,20 @@ run_part() {  # name, command...
 
 export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}"
 if [ $fast -eq 1 ]; then
-  run_part "C++ tests (ctest, fast)" ctest --test-dir build --output-on-failure -E "$SLOW_CPP_TESTS"
+  run_part "C++ tests (ctest, fast)" ctest --test-dir build --output-on-failure -E "$SLOW_CPP_TESTS_REGEX"
 else
   run_part "C++ tests (ctest)" ctest --test-dir build --output-on-failure
 fi
 run_part "Python module (pytest)" env GAUSS_BUILD_DIR="$PWD/build" /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python
+run_part "Quality matrix, fast subset (docs/quality.md)" \
+  env GAUSS_BUILD_DIR="$PWD/build" /usr/bin/python3 scripts/quality_matrix.py --fast
 run_part "Blender add-on, headless" \
   blender -b --factory-startup --python-exit-code 1 -P tests/blender/run_headless.py -- "$PWD/build"
 if [ $fast -eq 0 ]; then
   run_part "Python module against numpy 2 (Python 3.11, 3.13)" bash scripts/test_numpy2.sh
   run_part "Blender add-on, real window (xvfb)" bash tests/blender/run_windowed.sh "$PWD/build"
+  run_part "Farm engines: Slurm, Open Job Description, Flamenco" \
+    env GAUSS_BUILD_DIR="$PWD/build" /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/farm
   run_part "Blender add-on in every bpy release (4.2 to 5.3)" bash scripts/test_blender_versions.sh
   run_part "Windows and macOS cross check (MinGW + wine, zig)" bash scripts/cross_check.sh
   run_part "C++ tests under ASan+UBSan" bash scripts/run_sanitizers.sh build-asan

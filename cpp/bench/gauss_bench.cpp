@@ -121,6 +121,7 @@ int main(int argc, char** argv) {
     solver.set_avoid_self_intersections(avoid_self_intersections);
     const double setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
+    if (until_converged) solver.set_tolerance(until);  // held_back() compares with it
     std::vector<double> step_ms, faces, rotations, admm_ms, rhs, solve, cubic_iterations;
     int multi_threaded_steps = 0, held_max = 0;
     double total_ms = 0;
@@ -153,8 +154,12 @@ int main(int argc, char** argv) {
     std::printf("phase_solve_ms_median: %.3f\n", median(solve));
     if (cubic) std::printf("cubic_admm_iterations_per_vertex_median: %.3f\n", median(cubic_iterations));
     std::printf("last_reldv: %.4g\n", solver.last_reldv());
+    std::printf("held_vertices_last_step: %d\n", solver.held_vertices());
     if (until_converged) {
-      if (solver.last_reldv() < until) {
+      if (solver.held_back()) {  // at rest, but only because the guard holds it: not converged
+        std::printf("steps_to_converge: held back by the guard after %d steps\n", taken);
+        std::printf("ms_to_converge: held back after %.1f ms\n", total_ms);
+      } else if (solver.last_reldv() < until) {
         std::printf("steps_to_converge: %d\n", taken);
         std::printf("ms_to_converge: %.1f\n", total_ms);
       } else {  // not a number: a table must not show the cap as if it were a result

@@ -42,7 +42,13 @@ void bind_iteration(pybind11::class_<SolverWrapper>& cls) {
         std::lock_guard<std::mutex> lock(s.mutex());
         return s.core().converged();
       }, "last_reldv < tolerance: the last step moved the mesh by less than the tolerance, and nothing\n"
-         "changed since.");
+         "changed since; False while held_back.");
+  cls.def_property_readonly("held_back", [](SolverWrapper& s) {
+        std::lock_guard<std::mutex> lock(s.mutex());
+        return s.core().held_back();
+      }, "The run stopped moving because avoid_self_intersections holds it, not because it converged: the\n"
+         "last step moved less than the tolerance, but its held vertices (held_vertices) would have moved\n"
+         "more without the guard. step_until stops here as at convergence.");
   cls.def_property("keep_volume", [](SolverWrapper& s) { return s.core().keep_volume(); },
       [](SolverWrapper& s, bool on) {
         std::lock_guard<std::mutex> lock(s.mutex());
@@ -55,7 +61,8 @@ void bind_iteration(pybind11::class_<SolverWrapper>& cls) {
         s.core().set_avoid_self_intersections(on);
       }, "No step (nor a move of the pins) brings two faces into contact that were not in contact when\n"
          "it was switched on (or at reset() and set_vertices()): vertices that would are held back, so the\n"
-         "result never passes through itself where the input did not. Costs up to about a step's time.\n"
+         "result never passes through itself where the input did not. Each step takes longer (how much:\n"
+         "docs/performance.md, \"The guard's cost\").\n"
          "Default: DEFAULTS['avoid_self_intersections'].");
   cls.def_property_readonly("held_vertices", [](SolverWrapper& s) {
         std::lock_guard<std::mutex> lock(s.mutex());

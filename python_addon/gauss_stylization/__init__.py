@@ -19,17 +19,17 @@ bl_info = {
 # tests/python/test_addon_layers.py checks it).
 MODULES = (
     "errors", "native",
-    "settings.fields", "settings.schema", "settings.properties", "settings.settings_io", "settings.validation",
-    "settings.styles",
-    "mesh.mesh_io", "mesh.source", "mesh.cache_modifier", "mesh.output", "mesh.rest_store",
+    "settings.fields", "settings.schema", "settings.versioning", "settings.properties", "settings.settings_io",
+    "settings.validation", "settings.paint_curve", "settings.styles",
+    "mesh.mesh_io", "mesh.crossings", "mesh.source", "mesh.cache_modifier", "mesh.output", "mesh.rest_store",
     "view.viewport", "view.gpu_compat", "view.sidebar",
     "run.undo_guard", "run.runs", "run.progress", "run.solver_setup", "run.session", "run.targets",
     "run.pin_targets", "run.live_run", "run.scripted_run", "run.modal_events",
     "handles.handles", "handles.handle_tool",
     "sphere.gauss_sphere", "sphere.directions", "sphere.orientation", "sphere.surface", "sphere.sphere_overlay",
     "sphere.sphere_editing", "sphere.style_from_data",
-    "bake.pc2", "bake.bake", "bake.bake_operators", "bake.bake_ui",
-    "operators", "slot_operators", "ui",
+    "bake.pc2", "bake.bake", "bake.bake_operators", "bake.bake_ui", "bake.farm", "bake.batch", "bake.farm_cli",
+    "operators", "slot_operators", "crossing_operators", "ui",
 )
 
 import importlib  # noqa: E402
@@ -44,13 +44,14 @@ import inspect  # noqa: E402
 
 import bpy  # noqa: E402
 
-from . import bake, handles, operators, run, settings, slot_operators, sphere, ui  # noqa: E402  (loaded above)
+from . import bake, crossing_operators, handles, operators, run, settings, slot_operators, sphere, ui  # noqa: E402,E501
 # The modules artists' scripts import by name (docs/scripting.md, docs/baking.md), at the top as before.
 from .bake import pc2  # noqa: E402,F401
 from .mesh import mesh_io  # noqa: E402,F401
 from .settings import settings_io, styles  # noqa: E402,F401
 
-classes = (settings.properties.classes + operators.classes + slot_operators.classes + sphere.style_from_data.classes
+classes = (settings.properties.classes + operators.classes + slot_operators.classes + crossing_operators.classes
+           + sphere.style_from_data.classes
            + sphere.sphere_editing.classes + bake.bake_operators.classes + ui.classes + bake.bake_ui.classes)
 
 
@@ -67,14 +68,18 @@ def register():
         _tooltip_from_docstring(cls)
         bpy.utils.register_class(cls)
     settings.properties.register_pointer()
+    settings.versioning.register_handlers()
     run.runs.register_handlers()
     sphere.sphere_overlay.register()
     sphere.sphere_editing.register()
     handles.handle_tool.register()
+    bake.farm_cli.register()
 
 
 def unregister():
+    bake.farm_cli.unregister()
     run.runs.unregister_handlers()
+    settings.versioning.unregister_handlers()
     run.runs.stop_all(bpy.context)  # first: a run's end is told to the event handlers below (on_end)
     handles.handle_tool.unregister()
     sphere.sphere_editing.unregister()

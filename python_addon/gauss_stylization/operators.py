@@ -26,6 +26,9 @@ from .view.viewport import existing_area, redraw_viewports
 
 PANEL_SECONDS = 0.25  # how often a live run redraws the sidebar (the viewport: every tick that steps)
 KEY_HINTS = ("Enter / Left-click: keep", "Esc / Right-click: cancel")  # what modal_events does with keys
+# In Weight Paint clicks paint (modal_events.clicks lets them through) and the object holds still.
+PAINT_HINTS = ("Left-drag: paint the Region's strength", "Ctrl+Tab / Back to Object Mode: stop painting, "
+               "the run takes the strokes", "Enter: keep", "Esc: cancel")
 PIN_HINT = "Drag a pin: move its handle"  # what handle_tool does, where a run has pins
 SETUP_HINT = "Esc: cancel"
 EDITS_UNDO_NAME = "Edits during Stylize"  # the undo step of what was edited during a cancelled run
@@ -263,15 +266,24 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         # Blender cancels a modal operator when e.g. its window closes, a file loads or it quits.
         self.stop(context, keep=False)
 
+    def status_line(self):
+        """The header and status bar text: the run's state, notes and keys, or what a handler that has
+        the keys for now says (a modal_events.KeysNote: a drag's Esc is not the run's)."""
+        keys_taken = [note for note in self.notes.values() if isinstance(note, modal_events.KeysNote)]
+        if keys_taken:
+            return TITLE + ": " + keys_taken[-1]
+        notes = "".join("  |  " + note for note in self.notes.values() if note)
+        return self.live.status_text() + notes + "  |  " + "  |  ".join(self.key_hints())
+
     def show_status(self, context, clear=False):
-        """Write the header and status bar text (event handlers call it after changing notes)."""
-        text = None
-        if not clear:
-            notes = "".join("  |  " + note for note in self.notes.values() if note)
-            text = self.live.status_text() + notes + "  |  " + "  |  ".join(self.key_hints())
+        """Write the status bar text (event handlers call it after changing notes). The viewport's
+        header keeps its menus, its mode menu being a way to Weight Paint during a run, except while a
+        handler has the keys (a handle drag): then it says what they do, where the artist looks."""
+        text = None if clear else self.status_line()
         area = existing_area(self._area_pointer)
         if area is not None:
-            area.header_text_set(text)
+            keys_taken = any(isinstance(note, modal_events.KeysNote) for note in self.notes.values())
+            area.header_text_set(text if keys_taken else None)
         if context.workspace is not None:
             context.workspace.status_text_set(text)
 
@@ -284,6 +296,8 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         """The keys that act on the run now; the pin hint only where an object has a Pin Group."""
         if self.live.preparing:
             return (SETUP_HINT,)
+        if bpy.context.mode == 'PAINT_WEIGHT':
+            return PAINT_HINTS
         pinned = any(session.object_alive() and session.obj.gauss_stylization.pin_group
                      for session in self.live.sessions)
         return KEY_HINTS + (PIN_HINT,) if pinned else KEY_HINTS

@@ -160,7 +160,41 @@ class OBJECT_OT_gauss_normals_from_faces(_NormalList, bpy.types.Operator):
         return {'FINISHED'}
 
 
+class OBJECT_OT_gauss_paint_region(bpy.types.Operator):
+    """Paint the active style's Region: Weight Paint mode with its vertex group the one painted, or,
+    in Weight Paint, back to Object Mode. A live run holds the object still while it is painted and
+    takes the strokes when it is back in Object Mode"""
+    bl_idname = "object.gauss_paint_region"
+    bl_label = "Paint Region"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    @classmethod
+    def poll(cls, context):
+        problem = None
+        if _settings(context) is None:
+            problem = "Select a mesh object"
+        elif context.mode not in {'OBJECT', 'PAINT_WEIGHT'}:
+            problem = "Only from Object Mode or Weight Paint"
+        return poll_result(cls, problem)
+
+    def execute(self, context):
+        if context.mode == 'PAINT_WEIGHT':
+            bpy.ops.object.mode_set(mode='OBJECT')
+            return {'FINISHED'}
+        obj = context.object
+        slot = active_slot(obj.gauss_stylization)
+        group = obj.vertex_groups.get(slot.vertex_group) if slot is not None and slot.vertex_group else None
+        if group is not None:
+            obj.vertex_groups.active_index = group.index
+        else:
+            self.report({'INFO'}, "The active style has no Region: strokes go to the active vertex group "
+                                  "(pick a group as the style's Region to paint its strength)")
+        bpy.ops.object.mode_set(mode='WEIGHT_PAINT')
+        return {'FINISHED'}
+
+
 classes = (
     OBJECT_OT_gauss_style_add, OBJECT_OT_gauss_style_remove, OBJECT_OT_gauss_style_move,
     OBJECT_OT_gauss_normal_add, OBJECT_OT_gauss_normal_remove, OBJECT_OT_gauss_normals_from_faces,
+    OBJECT_OT_gauss_paint_region,
 )

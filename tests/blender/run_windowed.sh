@@ -10,15 +10,17 @@
 #   windowed_panel.py        the sidebar redrawn by operators, labels that fit it, the sphere's highlight
 #                            and axis labels, the gpu state after draw callbacks, sidebar screenshots
 #   windowed_undo_save.py    undo, Del and saving in the middle of a run or a bake lose nothing
-#   windowed_paint_strength.py  Weight Paint strokes during a run, picked up back in Object Mode
+#   windowed_paint_strength.py  Weight Paint strokes during a run, picked up back in Object Mode;
+#                            Weight Paint reached by Ctrl+Tab, the header's mode menu and Paint Region
 #   windowed_self_intersections.py  Avoid Self-Intersections ticked in the panel: a live run and a
 #                            handle drag that cross the mesh through itself without it, not with it
 #   windowed_quit.py         quitting during a run must not save undo steps 0 in the preferences
 #   tests/blender/run_windowed.sh [BUILD_DIR]
 # Prints each part's result and "windowed summary: N passed, M failed"; exits non-zero on any
-# failure, a crash or a hang. Screenshots go to BUILD_DIR/screenshots/: the sidebar panel (panel.png),
-# the Gauss sphere overlay (sphere_overlay.png), a pin handle being dragged (handle_drag.png) and a live run
-# holding vertices back (self_intersections.png).
+# failure, a crash or a hang. Screenshots go to BUILD_DIR/screenshots/: the sidebar panel (sidebar_*.png,
+# settling_tooltip.png, bake_start_*.png), the Gauss sphere overlay (sphere_overlay.png), a pin handle
+# being dragged (handle_drag.png, its header: handle_drag_header.png), a live run holding vertices back
+# (self_intersections.png) and Weight Paint during a run (weight_paint_mid_run.png, sidebar_paint_region.png).
 set -u
 HERE=$(cd "$(dirname "$0")" && pwd)
 BUILD=$(cd "${1:-$HERE/../../build}" && pwd) || { echo "windowed: no build dir"; exit 2; }

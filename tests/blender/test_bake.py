@@ -300,11 +300,14 @@ def test_the_bake_panel_offers_its_settings_and_both_bakes(addon, tmp_path):
     obj = rig.bent_capsule()
     rows = _bake_panel_rows(addon)
     assert [row for row in rows if not row.startswith("label")] == [
-        "bake_steps", "bake_warm_start", "bake_scene_range", "bake_filepath",
+        "bake_steps", "bake_warm_start", "bake_warmup_frames", "bake_scene_range", "bake_filepath",
         "object.gauss_bake_animation", "object.gauss_bake_progress"]
     assert _shows(rows, "Frames 1 to 10 (the scene's)")
+    obj.gauss_stylization.bake_warm_start = False  # Warm-up only matters with Warm Start
+    assert "bake_warmup_frames" not in _bake_panel_rows(addon)
+    obj.gauss_stylization.bake_warm_start = True
     obj.gauss_stylization.bake_scene_range = False
-    assert ["bake_frame_start", "bake_frame_end"] == [row for row in _bake_panel_rows(addon) if "frame" in row]
+    assert ["bake_frame_start", "bake_frame_end"] == [row for row in _bake_panel_rows(addon) if row.startswith("bake_frame")]
     assert _bake_animation(tmp_path / "c.pc2") == {'FINISHED'}
     assert _shows(_bake_panel_rows(addon), "Gauss Bake plays %s" % (tmp_path / "c.pc2"))
     assert obj.modifiers[-1].type == 'MESH_CACHE'

@@ -249,6 +249,34 @@ def test_a_drag_takes_esc_and_enter_before_the_run_and_each_object_has_its_handl
         second_run.cancel()
 
 
+def test_while_a_handle_is_dragged_the_status_says_only_what_the_keys_do_to_it(addon):
+    """Issue 26: the header showed the run's "Esc / Right-click: cancel" beside the drag's "Esc /
+    right-click: put back", and was cut off. During a drag it now says the drag's keys alone."""
+    obj, session = _pinned_sphere(addon)
+    run = _Run([session])
+    run.live = addon.run.live_run.LiveRun.__new__(addon.run.live_run.LiveRun)  # status_text() is not asked
+    status_line = addon.operators.OBJECT_OT_gauss_stylize.status_line
+    key_hints = addon.operators.KEY_HINTS
+    run.key_hints = lambda: key_hints
+    try:
+        tool, _handles = _grab(addon, run, session, 0)
+        addon.handles.handle_tool._show_hint(run, bpy.context, tool)
+        for axis in (None, 'Z', 'Z'):
+            if axis:
+                tool.drag.constrain(axis)
+                addon.handles.handle_tool._show_hint(run, bpy.context, tool)
+            text = status_line(run)
+            assert text.count("Esc") == 1 and "put back" in text and "cancel" not in text, text
+            assert not any(hint in text for hint in key_hints), text  # (its width: windowed_interactive.py)
+        tool.drop()
+        addon.handles.handle_tool._show_hint(run, bpy.context, tool)
+        run.live = helpers.live_run([helpers.suzanne(levels=0)])  # after the drag: the run's own keys again
+        assert all(hint in status_line(run) for hint in key_hints)
+        run.live.cancel()
+    finally:
+        session.cancel()
+
+
 def test_a_drag_ends_with_its_run_or_its_object(addon):
     obj, session = _pinned_sphere(addon)
     run = _Run([session])

@@ -49,6 +49,8 @@ def test_keys_end_the_run_and_undo_cancels_it_saying_so(events):
     assert modal_events.dispatch(run, bpy.context, _event('Z', ctrl=True, shift=True)) == {'CANCELLED'}
     assert "cancelled by redo" in run.why
     assert modal_events.dispatch(run, bpy.context, _event('TAB')) == {'RUNNING_MODAL'}
+    # Ctrl+Tab opens the mode pie, one of the ways to Weight Paint during a run (docs/interactive.md).
+    assert modal_events.dispatch(run, bpy.context, _event('TAB', ctrl=True)) == {'PASS_THROUGH'}
     assert modal_events.dispatch(run, bpy.context, _event('G')) == {'PASS_THROUGH'}
     assert run.ended == [True, False, False, False]
 

@@ -50,20 +50,46 @@ def test_a_region_of_weight_one_is_the_whole_mesh_bit_for_bit(addon):
         np.testing.assert_array_equal(painted, _result(addon, obj, 8))
 
 
-def test_a_weight_of_a_half_is_half_the_mu(addon):
+def test_a_weight_of_a_half_is_the_curves_share_of_the_mu(addon):
+    # The paint curve (settings/paint_curve.py) turns a painted 0.5 into a mu scale of about 0.08 with
+    # the Gauss method at Lambda 4, and leaves it 0.5 with the Cubic method.
     obj, _ = _painted_sphere(lambda co: np.full(len(co), 0.5))
-    slot = obj.gauss_stylization.styles[0]
-    for method in ('GAUSS', 'CUBIC'):
-        obj.gauss_stylization.method = method
+    settings = obj.gauss_stylization
+    slot = settings.styles[0]
+    curve = addon.settings.paint_curve
+    settings.lam = 4.0
+    for method, expected in (('GAUSS', (0.05, 0.1)), ('CUBIC', (0.5, 0.5))):
+        settings.method = method
+        scale = float(curve.strength([0.5], curve.steepness(method, settings.lam))[0])
+        assert expected[0] <= scale <= expected[1]
         slot.vertex_group, slot.mu = "Paint", 1.0
         half = _result(addon, obj, 8)
-        slot.vertex_group, slot.mu = "", 0.5
+        slot.vertex_group, slot.mu = "", scale
         np.testing.assert_array_equal(half, _result(addon, obj, 8))
+
+
+def test_the_curve_follows_lambda_mid_run(addon):
+    # A live change of Lambda changes the curve's steepness: the face weights are given anew.
+    obj, _ = _painted_sphere(lambda co: np.full(len(co), 0.5))
+    obj.gauss_stylization.lam = 4.0
+    run = _session(addon, obj)
+    try:
+        run.step(1)
+        before = run.plan.paint_steepness
+        obj.gauss_stylization.lam = 8.0
+        assert run.sync_settings() is None
+        assert run.plan.paint_steepness > before
+        curve = addon.settings.paint_curve
+        np.testing.assert_allclose(run.plan.regions_for(obj.gauss_stylization)[0][:, 0],
+                                   curve.strength([0.5], curve.steepness('GAUSS', 8.0))[0], rtol=1e-6)
+    finally:
+        run.cancel()
 
 
 def test_weights_are_read_from_the_group_and_zero_leaves_faces_unstyled(addon):
     # Weight 0 below the equator, rising to 1 at the top: polygons whose vertices all weigh 0 have
-    # no style; those whose corners mostly carry a weight, the mean of those corners' weights.
+    # no style; those whose corners mostly carry a weight, the mean of those corners' weights
+    # through the paint curve.
     obj, start = _painted_sphere(lambda co: np.clip(co[:, 2], 0.0, 1.0))
     plan = addon.run.session.Plan(obj)
     try:
@@ -74,7 +100,8 @@ def test_weights_are_read_from_the_group_and_zero_leaves_faces_unstyled(addon):
         painted = arrays.polygon_average((expected > 0).astype(float))
         polygon_mean = np.where(painted > 0.5, arrays.polygon_average(expected) / np.maximum(painted, 1e-30),
                                 0.0)[arrays.tri_polygon]
-        np.testing.assert_allclose(face_w[:, 0], polygon_mean, atol=1e-6)
+        np.testing.assert_allclose(face_w[:, 0], addon.settings.paint_curve.strength(polygon_mean, plan.paint_steepness),
+                                   atol=1e-6)
         below = polygon_mean == 0
         assert below.sum() > len(below) // 3 and np.all(face_w[below] == 0)
     finally:

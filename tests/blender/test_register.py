@@ -32,7 +32,7 @@ def test_default_settings(addon):
     import helpers
     settings = helpers.uv_sphere().gauss_stylization
     assert (settings.lam, settings.admm_iterations, settings.iterations) == (4.0, 1, 100)
-    assert settings.output == 'MESH' and settings.uncovered == 'FIRST_SLOT'
+    assert settings.output == 'MESH' and settings.uncovered == 'UNSTYLED'
     slot = settings.styles.add()
     assert (slot.preset, slot.sigma, slot.mu, slot.axis_contribution) == ('CUBE', 4.0, 1.0, 0.5)
     assert slot.bl_rna.properties["orientation"].subtype == 'EULER'

@@ -96,7 +96,7 @@ LIVE_CHANGES = {
     ("slot", "axis_contribution"): (dict(preset='CYLINDER'), {}, 0.9),
     ("slot", "vertex_group"): ({}, dict(uncovered='UNSTYLED'), "Top"),
     ("slot", "custom_normals"): (dict(preset='CUSTOM', custom_normals=[(0, 0, 1)]), {}, [(1, 0, 0)]),
-    ("object", "uncovered"): (dict(vertex_group="Top"), {}, 'UNSTYLED'),
+    ("object", "uncovered"): (dict(vertex_group="Top"), {}, 'FIRST_SLOT'),
     ("object", "pin_group"): ({}, {}, "Pins"),
     ("object", "lam"): ({}, {}, 8.0),
     ("object", "method"): ({}, {}, 'CUBIC'),

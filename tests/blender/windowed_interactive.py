@@ -261,6 +261,31 @@ def _release(d, at):
     d.window().event_simulate(type='LEFTMOUSE', value='RELEASE', x=int(round(at[0])), y=int(round(at[1])))
 
 
+def header_fits(d, name):
+    """Issue 26: during a drag the header was cut off and named two meanings of Esc. Checks ``name`` =
+    the header's text (the live operator's status line) has one Esc and fits the 3D view's header at
+    the window's width; a screenshot of the header goes to BUILD/screenshots/handle_drag_header.png."""
+    from gauss_stylization.view.sidebar import text_width
+    op = d.live_operator()
+    area, regions = d.view3d()
+    header = regions['HEADER']
+    text = op.status_line() if op is not None else ""
+    with bpy.context.temp_override(window=d.window(), area=area, region=header):
+        wide = text_width(text)
+    room = header.width - 2 * 20.0 * bpy.context.preferences.system.ui_scale
+    pixels = area_screenshot(os.path.join(d.SHOTS, "area_header.png"), keep=False)
+    top = header.y - area.y
+    shot = pixels[top:top + header.height]
+    image = bpy.data.images.new("header", shot.shape[1], shot.shape[0], alpha=True)
+    image.pixels.foreach_set(np.ascontiguousarray(shot, np.float32).ravel())
+    image.filepath_raw = os.path.join(d.SHOTS, "handle_drag_header.png")
+    image.file_format = 'PNG'
+    image.save()
+    bpy.data.images.remove(image)
+    d.check(name, text.count("Esc") == 1 and "cancel" not in text and wide <= room,
+            "%r: %.0f px for %.0f px" % (text, wide, room))
+
+
 def handle_dragging(d, name):
     obj = d.activate(bpy.data.objects[name])
     _pin_top_and_bottom(d, obj)
@@ -275,6 +300,7 @@ def handle_dragging(d, name):
     _drag_handle(d, grab, (100, 0))
     yield from d.wait_steps(steps + 3)  # still holding the button
     area_screenshot(os.path.join(d.SHOTS, "handle_drag.png"))
+    header_fits(d, "while a handle is dragged, the header says what the keys do to it, once, and fits")
     op = d.live_operator()
     d.check("a press on a pin grabs its handle and the run keeps stepping while it is dragged",
             op is not None and handle_tool.tool_of(op).drag is not None and op.session.steps > steps + 2,
@@ -298,6 +324,7 @@ def handle_dragging(d, name):
     held = (d.coords(obj)[pins] @ world[:3, :3].T)
     _drag_handle(d, grab, (-60, 40), key='Z')
     yield 0.4
+    header_fits(d, "... also along an axis")
     _release(d, (grab[0] - 60, grab[1] + 40))
     yield from d.wait_steps(d.live_operator().session.steps + 3)
     along = d.coords(obj)[pins] @ world[:3, :3].T - held

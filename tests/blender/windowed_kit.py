@@ -154,7 +154,7 @@ def wait_steps(count, limit=30.0):
     deadline = time.monotonic() + limit
     while time.monotonic() < deadline:
         op = live_operator()
-        if op is not None and op.session is not None and (op.session.steps >= count or op.session.converged):
+        if op is not None and op.session is not None and (op.session.steps >= count or op.session.at_rest):
             return
         yield 0.05
 
@@ -183,7 +183,7 @@ def goes_on(name, more=3):
     yield from wait_steps(steps + more)
     op = live_operator()
     check(name, op is not None and op.session is not None and
-          (op.session.steps >= steps + more or op.session.converged))
+          (op.session.steps >= steps + more or op.session.at_rest))
 
 
 def end_with(key, name, obj_name, expected):

@@ -1,7 +1,10 @@
 """The sidebar panels in a real window: they are redrawn when an operator changes them, every
 label fits the sidebar's default width, the Gauss sphere highlights the selected custom normal
-and labels the axes, draw callbacks leave the gpu state as they found it; and screenshots of
-the sidebar (idle, live run, a Custom slot with 20 normals, the Bake panel). Run by
+and labels the axes, draw callbacks leave the gpu state as they found it, the live run's "settling"
+row has its numbers as a tooltip, slot names and Custom normals are readable in their lists, a
+bake's start leaves the sub-panels in place; and screenshots of the sidebar (idle, live run, a
+Custom slot with 20 normals, the slot list, the Bake panel, the settling tooltip, the sidebar's
+first drawings of a bake: bake_start_*.png). Run by
 run_windowed.sh after the other parts, with windowed_kit.py's helpers as ``d``:
 
     blender --factory-startup --enable-event-simulate -P tests/blender/windowed_panel.py -- BUILD_DIR
@@ -13,6 +16,7 @@ BUILD_DIR/screenshots/windowed_panel_result.txt.
 
 import os
 import sys
+import tempfile
 import time
 
 import bpy
@@ -21,6 +25,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import windowed_kit as d  # noqa: E402  (also sets up the paths and the window options)
+import rig  # noqa: E402
 from panel_recorder import draw, labels  # noqa: E402
 from windowed_actions import area_screenshot  # noqa: E402
 
@@ -28,9 +33,9 @@ from gauss_stylization import settings_io, ui  # noqa: E402  (windowed_kit put t
 from gauss_stylization.bake import bake_ui  # noqa: E402
 from gauss_stylization.handles import handle_tool  # noqa: E402
 from gauss_stylization.sphere import gauss_sphere, sphere_overlay  # noqa: E402
-from gauss_stylization.view.sidebar import label_width, text_width  # noqa: E402
+from gauss_stylization.view.sidebar import label_width, list_row_width, text_width  # noqa: E402
 
-TIME_LIMIT = 300.0  # seconds (idle: well under a minute)
+TIME_LIMIT = 480.0  # seconds (idle: about a minute; a busy 2-core machine redraws slowly)
 SIDEBAR_SHOTS = ("sidebar_idle.png", "sidebar_live_run.png", "sidebar_custom_normals.png", "sidebar_bake.png")
 drawn = {"sidebar": 0.0, "shown": None}
 
@@ -314,12 +319,150 @@ def live_run_shows_convergence(name):
     obj = d.activate(bpy.data.objects[name])
     obj.gauss_stylization.pin_group = ""
     original = d.coords(obj)
+    obj.gauss_stylization.tolerance = 1e-5  # it settles for long enough to hover over the row
     yield from d.live_run(5)
     op = d.live_operator()
-    lines = [text for text, _ in op.panel_state()[1]] if op else []
-    d.check("a live run says its change against the Tolerance",
-            any(text.startswith("change ") and "\u2192" in text for text in lines), str(lines))
+    lines = [line[0] for line in op.panel_state()[1]] if op else []
+    d.check("a live run says in words how far it has settled",
+            any(text.startswith("settling, ") and text.endswith("%") for text in lines), str(lines))
+    yield from settling_tooltip()
     yield from d.end_with('ESC', "Esc after the convergence check restores the mesh", name, original)
+    obj.gauss_stylization.tolerance = 1e-3
+
+
+def settling_tooltip():
+    """Hover over the sidebar's "settling" row until Blender shows its tooltip (the numbers);
+    the 3D view with it goes to BUILD/screenshots/settling_tooltip.png."""
+    region = sidebar()
+    area, _ = d.view3d()
+    x = region.x + region.width // 2
+    found = None
+    for y in range(region.y + region.height - 20, region.y + region.height // 2, -8):
+        d.window().event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
+        yield 0.05
+        bpy.context.window_manager.clipboard = ""
+        try:
+            with bpy.context.temp_override(window=d.window(), area=area, region=region):
+                bpy.ops.ui.copy_python_command_button()
+        except RuntimeError:
+            continue
+        if "gauss_run_details" in bpy.context.window_manager.clipboard:
+            found = y
+            break
+    d.check("the settling row is a button with the numbers", found is not None and
+            "Tolerance" in bpy.context.window_manager.clipboard, bpy.context.window_manager.clipboard)
+    if found is None:
+        return
+    d.window().event_simulate(type='MOUSEMOVE', value='NOTHING', x=x + 1, y=found)
+    yield 1.5  # Blender's tooltip delay
+    area_screenshot(os.path.join(d.SHOTS, "settling_tooltip.png"))
+
+
+# -- the sidebar as drawn, frame by frame ---------------------------------------------------
+
+class SidebarFrames:
+    """Every frame the sidebar draws, read back at the end of its drawing: [(seconds, (H, W, 4) pixels,
+    frames the bake running then had baked)]."""
+
+    def __init__(self):
+        self.frames = []
+        self.handler = bpy.types.SpaceView3D.draw_handler_add(self._grab, (), 'UI', 'POST_PIXEL')
+
+    def _grab(self):
+        region = bpy.context.region
+        if region is None or region != sidebar():
+            return
+        buffer = gpu.state.active_framebuffer_get().read_color(0, 0, region.width, region.height, 4, 0, 'FLOAT')
+        buffer.dimensions = region.width * region.height * 4
+        job = getattr(d.live_operator(), "_job", None)  # a bake's
+        self.frames.append((time.monotonic(), np.array(buffer, np.float32).reshape(region.height, region.width, 4),
+                            job.done if job is not None else None))
+
+    def stop(self):
+        bpy.types.SpaceView3D.draw_handler_remove(self.handler, 'UI')
+
+
+
+def _rows_that_differ(a, b, below):
+    """Rows (counted from the top, from ``below`` down) where two frames differ visibly."""
+    a, b = a[::-1][below:], b[::-1][below:]
+    if a.shape != b.shape:
+        return a.shape[0]
+    return int(np.count_nonzero(np.abs(a[..., :3] - b[..., :3]).max(axis=(1, 2)) > 0.1))
+
+
+def bake_start_keeps_the_panels_in_place(name):
+    """Issue 26: for a second or two after a bake started, the sub-panels' headers were drawn over
+    Stylize, Output and Pin Group: the bake's box pushes them down, Blender slides them there at its
+    next redraws, and the bake's first frame came before those and held the screen as it was. Now what
+    the sidebar shows while the first frame is baked (its last drawing before) has them in place."""
+    obj = bpy.data.objects[name]
+    obj.hide_set(True)
+    with d.override():
+        capsule = rig.bent_capsule(frames=(1, 40), segments=(48, 24))
+    scroll_sidebar(-20)
+    yield 1.0
+    for old in os.listdir(d.SHOTS):
+        if old.startswith("bake_start_"):
+            os.remove(os.path.join(d.SHOTS, old))
+    frames = SidebarFrames()
+    folder = tempfile.mkdtemp(prefix="gauss_bake_")
+    area, regions = d.view3d()
+    with bpy.context.temp_override(window=d.window(), area=area, region=regions['UI']):  # as its button does
+        bpy.ops.object.gauss_bake_animation('INVOKE_DEFAULT', frame_start=1, frame_end=40,
+                                            filepath=os.path.join(folder, "capsule.pc2"))
+    started = time.monotonic()
+    deadline = started + 60.0
+    while time.monotonic() < deadline and not any(done and done >= 3 for _at, _pixels, done in frames.frames):
+        yield 0.1
+    sidebar().tag_redraw()
+    yield 0.5
+    frames.stop()
+    d.press('ESC', *d.viewport_point())
+    yield 0.5
+    before_first = [pixels for _at, pixels, done in frames.frames if done == 0]
+    settled = frames.frames[-1][1] if frames.frames else None
+    for index, (at, pixels, done) in enumerate(frames.frames[:8]):
+        save_png(pixels, "bake_start_%02d_%.2fs_frame%s.png" % (index, at - started, done))
+    if not before_first or settled is None:
+        d.check("the sidebar was drawn before the bake's first frame and after", False, str(len(frames.frames)))
+    else:
+        top = int(0.3 * settled.shape[0])  # below the bake's box, whose frame count changes
+        rows = _rows_that_differ(before_first[-1], settled, top)
+        d.check("while a bake's first frame is baked the sidebar shows its panels in place",
+                rows <= 4,  # a glitch moves hundreds
+                "%d rows differ from the settled sidebar (%d drawings before it)" % (rows, len(before_first)))
+    bpy.data.objects.remove(capsule)
+    bpy.data.objects.remove(bpy.data.objects["Rig"])
+    obj.hide_set(False)
+    d.activate(obj)
+
+
+def slot_names_and_normals_fit(name):
+    """Issue 26: slot names were cut to "Stre..." (half of the list's row) and the Custom normals ran
+    their numbers together ("-0.79-0.19 0.58"). A screenshot of both, and their texts against the row."""
+    obj = d.activate(bpy.data.objects[name])
+    settings = obj.gauss_stylization
+    if "Head" not in obj.vertex_groups:
+        obj.vertex_groups.new(name="Head")
+    settings_io.apply_dict(settings, {"styles": [
+        {"preset": 'CUBE', "name": "Stretched Cube"}, {"preset": 'TRUNCATED_PYRAMID', "vertex_group": "Head"},
+        {"preset": 'CUSTOM', "custom_normals": [[-0.79, -0.19, 0.58], [-0.99, -0.99, -0.99]] * 10}],
+        "active_style_index": 2})
+    scroll_sidebar(-20)
+    yield from sidebar_shot("sidebar_slots.png")
+    area, _ = d.view3d()
+    with bpy.context.temp_override(window=d.window(), area=area, region=sidebar()):
+        unit = 20.0 * bpy.context.preferences.system.ui_scale
+        row = list_row_width()
+        cut = [slot.name for slot in settings.styles
+               if ui.slot_row(slot, row, text_width, unit)[1] is None
+               and text_width(slot.name) > row - ui.ICON_UNITS * unit]
+        widest = max(text_width(ui.normal_text(n.vector)) for n in settings.styles[2].custom_normals)
+    d.check("every slot's name fits its row in the list at the default width", not cut, str(cut))
+    room = (1.0 - ui.NORMAL_NUMBER_SHARE) * (row - 0.6 * unit) - 0.5 * unit  # 20 rows: a scroll bar
+    d.check("a Custom normal's X Y Z fit their row, apart", widest <= room, "%.0f px for %.0f px" % (widest, room))
+    settings.styles.clear()
 
 
 def scenario():
@@ -342,6 +485,8 @@ def scenario():
     yield from live_run_shows_convergence(name)
     yield from gpu_state_is_restored(name)
     yield from sphere_highlights_and_axes(name)
+    yield from slot_names_and_normals_fit(name)
+    yield from bake_start_keeps_the_panels_in_place(name)
     obj = d.activate(bpy.data.objects[name])
     obj.gauss_stylization.styles.clear()
     scroll_sidebar(15)  # the Bake panel is at the bottom

@@ -79,7 +79,8 @@ def ctrl_z():
 
 
 def run_until_converged(seen, shot=None, until=None):
-    """Generator: a live run started from the 3D view, watched until it converges, has done RUN_STEPS
+    """Generator: a live run started from the 3D view, watched until it is at rest (converged or held
+    back by the guard), has done RUN_STEPS
     steps or ``until()`` is true; seen["held"] = whether its status text ever said it held vertices
     back (the first time it does, the sidebar is scrolled to the Solver panel and the 3D view saved to
     ``shot`` if given)."""
@@ -94,7 +95,7 @@ def run_until_converged(seen, shot=None, until=None):
                 if shot:
                     yield from scroll_sidebar_down(30)  # the run's box above pushed the checkbox down
                     area_screenshot(os.path.join(kit.SHOTS, shot))
-            if op.session.steps >= RUN_STEPS or op.session.converged or (until and until()):
+            if op.session.steps >= RUN_STEPS or op.session.at_rest or (until and until()):
                 break
         yield 0.05
     op = live_operator()
@@ -140,6 +141,76 @@ def live_run_on_spot(name, _prepared):
     yield from keep_and_undo(name, original, "clean result")
     obj = bpy.data.objects[name]  # undo replaced the object's data
     check("the undone run leaves the option ticked", obj.gauss_stylization.avoid_self_intersections)
+
+
+# -- checking a print: Select Crossing Faces ------------------------------------------------
+
+def find_sidebar_button(idname):
+    """Generator: hover down the sidebar asking Blender which operator's button is under the mouse;
+    found["button"] = the middle of ``idname``'s button (None if not found)."""
+    region = kit.view3d()[1]['UI']
+    area = kit.view3d()[0]
+    x = region.x + region.width // 2
+    found["button"] = None
+    for y in range(region.y + region.height - 10, region.y, -9):
+        window().event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
+        yield 0.02
+        bpy.context.window_manager.clipboard = ""
+        try:
+            with bpy.context.temp_override(window=window(), area=area, region=region):
+                bpy.ops.ui.copy_python_command_button()
+        except RuntimeError:
+            continue
+        if idname in bpy.context.window_manager.clipboard:
+            found["button"] = (x, y)
+            return
+
+
+def crossing_faces_button(name, _prepared):
+    """Issue 26: an artist checks a print before exporting it. Spot stylized at lambda 20 without the
+    guard crosses itself: the Solver panel's Select Crossing Faces opens Edit Mode with exactly the
+    crossing faces selected (a screenshot: crossing_faces.png); with the guard, it finds none."""
+    from gauss_stylization.mesh import crossings
+    from gauss_stylization import native
+    obj = kit.activate(bpy.data.objects[name])
+    original = coords(obj)
+    obj.gauss_stylization.avoid_self_intersections = False
+    obj.gauss_stylization.lam = 20.0
+    with kit.override():
+        bpy.ops.object.gauss_stylize(iterations=0)
+    expected = crossings.find(native.core(), obj, bpy.context.evaluated_depsgraph_get())
+    yield from scroll_sidebar_down()
+    yield from find_sidebar_button("gauss_select_intersections")
+    check("the Solver panel has the Select Crossing Faces button", found["button"] is not None)
+    if found["button"] is None:
+        return
+    press('LEFTMOUSE', *found["button"])
+    yield 0.8
+    edit_faces = set()
+    if obj.mode == 'EDIT':
+        edit_faces = {face.index for face in bmesh.from_edit_mesh(obj.data).faces if face.select}
+    check("a click opens Edit Mode with the crossing faces selected", obj.mode == 'EDIT' and len(expected.pairs)
+          and edit_faces == set(expected.polygons.tolist()),
+          "%s, %d selected, %d expected" % (obj.mode, len(edit_faces), len(expected.polygons)))
+    with kit.override():
+        bpy.ops.view3d.view_selected()
+    yield 0.5
+    area_screenshot(os.path.join(kit.SHOTS, "crossing_faces.png"))
+    with kit.override():
+        bpy.ops.object.mode_set(mode='OBJECT')
+    helpers.mesh_io.write_vertex_coords(obj.data, original)
+    obj.data.update()
+    obj.gauss_stylization.avoid_self_intersections = True
+    with kit.override():
+        bpy.ops.object.gauss_stylize(iterations=0)
+    press('LEFTMOUSE', *found["button"])
+    yield 0.8
+    selected = np.zeros(len(obj.data.polygons), bool)
+    obj.data.polygons.foreach_get("select", selected)
+    check("with Avoid Self-Intersections none is selected, and Object Mode stays", obj.mode == 'OBJECT'
+          and not selected.any())
+    helpers.mesh_io.write_vertex_coords(obj.data, original)
+    obj.data.update()
 
 
 # -- a handle dragged into the mesh -------------------------------------------------------
@@ -239,5 +310,6 @@ def run_scenario(scenario_name, name, prepared):
 # Avoid Self-Intersections is in the Solver panel, closed by default: registered open before the sidebar
 # first draws it (the panel itself is the add-on's).
 ui.VIEW3D_PT_gauss_solver.bl_options = set()
-kit.start(kit.cube_style_scenarios(("live_run_on_spot", "handle_drag_into_the_plate"), run_scenario),
+kit.start(kit.cube_style_scenarios(("live_run_on_spot", "crossing_faces_button", "handle_drag_into_the_plate"),
+                                   run_scenario),
           "windowed_self_intersections_result.txt", time_limit=TIME_LIMIT)

@@ -13,13 +13,25 @@ def face_normals(V, F):
     return n / np.maximum(area, 1e-300)[:, None], area
 
 
-def aligned_share(V, F, directions, degrees=10.0, face_mask=None):
+def aligned_share(V, F, directions, degrees=10.0, face_mask=None, rings=()):
     """Area-weighted share of the faces (of those in ``face_mask``, a (#F,) bool array, if given)
-    whose normal is within ``degrees`` of one of ``directions`` (#D,3, any length)."""
+    whose normal is within ``degrees`` of one of ``directions`` (#D,3, any length, #D may be 0) or of
+    one of ``rings``, (axis, offset) pairs standing for the circles x . axis = offset on the sphere (a
+    ring style's preferred normals; the angle to a circle is the difference of polar angles)."""
     n, area = face_normals(V, F)
-    d = np.asarray(directions, np.float64)
+    d = np.asarray(directions, np.float64).reshape(-1, 3)
     d = d / np.linalg.norm(d, axis=1)[:, None]
-    aligned = (n @ d.T).max(axis=1) >= np.cos(np.radians(degrees))
+    aligned = ((n @ d.T) >= np.cos(np.radians(degrees))).any(axis=1)
+    for axis, offset in rings:
+        a = np.asarray(axis, np.float64) / np.linalg.norm(axis)
+        polar = np.arccos(np.clip(n @ a, -1.0, 1.0))
+        aligned |= np.abs(polar - np.arccos(offset)) <= np.radians(degrees)
     if face_mask is not None:
         area, aligned = area[face_mask], aligned[face_mask]
     return float(area[aligned].sum() / area.sum())
+
+
+def style_share(V, F, style, degrees=10.0, face_mask=None):
+    """aligned_share against a gauss_core.Style's preferred normals and rings."""
+    rings = [(style.axis, offset) for offset in style.ring_offsets]
+    return aligned_share(V, F, style.normals, degrees, face_mask, rings)

@@ -1,8 +1,11 @@
-"""Small meshes for the module tests (numpy only); measurements are in tests/common/measures.py."""
+"""Small meshes for the module tests (numpy only); measurements are in tests/common/measures.py, mesh
+files are read by tests/common/mesh_files.py (read_obj is re-exported here for the tests that use it)."""
 import importlib.util
 import os
 
 import numpy as np
+
+from mesh_files import read_obj  # noqa: F401
 
 
 def _gauss_sphere():
@@ -24,17 +27,3 @@ subdivided_sphere = _SPHERES.subdivided_sphere
 
 def icosphere(levels=2):
     return _SPHERES.icosphere(levels)
-
-
-def read_obj(path):
-    V, F = [], []
-    for line in open(path):
-        parts = line.split()
-        if not parts:
-            continue
-        if parts[0] == "v":
-            V.append([float(x) for x in parts[1:4]])
-        elif parts[0] == "f":
-            idx = [int(p.split("/")[0]) - 1 for p in parts[1:]]
-            F += [(idx[0], idx[i], idx[i + 1]) for i in range(1, len(idx) - 1)]
-    return np.array(V), np.array(F, dtype=np.int64)

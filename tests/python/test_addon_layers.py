@@ -13,14 +13,14 @@ ADDON = REPO / "python_addon" / "gauss_stylization"
 
 # Bottom first. The package's own __init__.py loads and registers everything and is left out.
 LAYERS = (
-    ("errors",),
+    ("errors", "app_handlers"),
     ("native",),
     ("settings",),
     ("mesh",),
     ("view",),
     ("run",),
     ("handles", "sphere", "bake"),
-    ("operators", "slot_operators"),
+    ("operators", "slot_operators", "crossing_operators"),
     ("ui",),
 )
 

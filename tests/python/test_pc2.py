@@ -116,3 +116,41 @@ def test_broken_files_are_refused(tmp_path, mangle, message):
     path.write_bytes(mangle(path.read_bytes()))
     with pytest.raises(ValueError, match=message):
         pc2.read(str(path))
+
+
+def _chunks(tmp_path, frames, ranges, start=1):
+    """Write frames[a:b] of each (a, b) in ``ranges`` as its own cache starting at frame start + a."""
+    paths = []
+    for a, b in ranges:
+        path = tmp_path / ("chunk_%d.pc2" % a)
+        _write(path, frames[a:b], start=float(start + a))
+        paths.append(str(path))
+    return paths
+
+
+def test_merged_chunks_are_byte_identical_to_one_cache_in_any_order(tmp_path):
+    frames = _frames(samples=12, points=7)
+    _write(tmp_path / "whole.pc2", frames, start=5.0)
+    # chunk_10 sorts before chunk_2 by name: the merge goes by the frames, not the names.
+    paths = _chunks(tmp_path, frames, [(0, 2), (2, 10), (10, 12)], start=5)
+    assert pc2.merge(list(reversed(paths)), str(tmp_path / "merged.pc2")) == (5.0, 12)
+    assert (tmp_path / "merged.pc2").read_bytes() == (tmp_path / "whole.pc2").read_bytes()
+
+
+@pytest.mark.parametrize("ranges, points, message", [
+    ([(0, 3), (4, 6)], None, "a gap"),
+    ([(0, 4), (3, 6)], None, "an overlap"),
+    ([(0, 3), (3, 6)], 4, "not chunks of one bake"),
+])
+def test_chunks_that_do_not_join_are_refused_and_write_nothing(tmp_path, ranges, points, message):
+    frames = _frames(samples=6, points=5)
+    paths = _chunks(tmp_path, frames, ranges)
+    if points:
+        _write(tmp_path / "other.pc2", _frames(samples=3, points=points), start=4.0)
+        paths[1] = str(tmp_path / "other.pc2")
+    before = sorted(os.listdir(tmp_path))
+    with pytest.raises(ValueError, match=message):
+        pc2.merge(paths, str(tmp_path / "merged.pc2"))
+    assert sorted(os.listdir(tmp_path)) == before
+    with pytest.raises(ValueError, match="no chunks"):
+        pc2.merge([], str(tmp_path / "merged.pc2"))

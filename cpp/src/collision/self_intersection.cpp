@@ -179,15 +179,49 @@ const std::vector<uint64_t>& SelfIntersectionGuard::contacts_of(const std::vecto
   return found_;
 }
 
-bool SelfIntersectionGuard::allowed(uint64_t key, int f, int g, const std::vector<Vector3d>& X) const {
-  if (!std::binary_search(allowed_.begin(), allowed_.end(), key)) return false;
+bool SelfIntersectionGuard::next_to_crossing(int f, int g) const {
+  const MeshTopology& topo = *topo_;
+  for (int v : topo.faces[f])
+    for (int i = topo.vertex_corner_start[v]; i < topo.vertex_corner_start[v + 1]; ++i) {
+      const int f0 = topo.vertex_corners[i] / 3;
+      for (int w : topo.faces[g])
+        for (int j = topo.vertex_corner_start[w]; j < topo.vertex_corner_start[w + 1]; ++j)
+          if (std::binary_search(crossing_.begin(), crossing_.end(), pair_key(f0, topo.vertex_corners[j] / 3)))
+            return true;
+    }
+  return false;
+}
+
+bool SelfIntersectionGuard::allowed(uint64_t key, int f, int g, const std::vector<Vector3d>& X) {
+  if (!std::binary_search(allowed_.begin(), allowed_.end(), key)) {
+    // A crossing the mesh already has may slide on to the next faces as the surface moves; a new
+    // crossing elsewhere may not begin (docs/interactive.md, Avoid Self-Intersections).
+    if (crossing_.empty() || !next_to_crossing(f, g)) return false;
+    std::lock_guard<std::mutex> lock(slid_mutex_);
+    slid_.push_back(key);
+    return true;
+  }
   if (std::binary_search(crossing_.begin(), crossing_.end(), key)) return true;
   Triangle a, b;  // touching at the start: allowed while it does not cross
   const int shared = arrange(topo_->faces[f], topo_->faces[g], X, a, b);
   return !triangles_cross(a, b, shared);
 }
 
+void SelfIntersectionGuard::take_slid_pairs() {
+  if (slid_.empty()) return;
+  std::sort(slid_.begin(), slid_.end());
+  slid_.erase(std::unique(slid_.begin(), slid_.end()), slid_.end());
+  for (std::vector<uint64_t>* list : {&allowed_, &crossing_}) {
+    const size_t middle = list->size();
+    list->insert(list->end(), slid_.begin(), slid_.end());
+    std::inplace_merge(list->begin(), list->begin() + middle, list->end());
+    list->erase(std::unique(list->begin(), list->end()), list->end());
+  }
+  slid_.clear();
+}
+
 void SelfIntersectionGuard::start_from(const std::vector<Vector3d>& X) {
+  slid_.clear();
   allowed_ = contacts(X, false);
   crossing_.clear();
   for (uint64_t key : allowed_) {
@@ -206,6 +240,7 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
   const int stages = static_cast<int>(std::min<double>(kMaxStages, std::max(1.0, std::ceil(longest / kStageMove))));
   if (stages == 1) {
     limit_stage(safe, X);
+    take_slid_pairs();
     return last_held_;
   }
   if (move_.size() != X.size()) {
@@ -223,7 +258,12 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
       if (!ever_held_[v]) ever_held_[v] = 1, held_in_any_.push_back(v);
     stage_start_ = X;
   }
-  for (int v : held_in_any_) ever_held_[v] = 0;
+  take_slid_pairs();
+  denied_ = 0;
+  for (int v : held_in_any_) {
+    ever_held_[v] = 0;
+    denied_ = std::max(denied_, (safe[v] + stages * move_[v] - X[v]).cwiseAbs().maxCoeff());
+  }
   last_held_ = static_cast<int>(held_in_any_.size());
   return last_held_;
 }
@@ -231,22 +271,16 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
 void SelfIntersectionGuard::limit_stage(const std::vector<Vector3d>& safe, std::vector<Vector3d>& X) {
   const MeshTopology& topo = *topo_;
   // A held vertex's step is halved per round down to kSmallestFraction, then taken back to `safe`
-  // outright; after kMaxRounds rounds every vertex goes back (never needed in the cases measured, but
-  // it bounds the work).
+  // outright. Only the corners of faces in a new contact step back, so the hold stays local: a pair
+  // whose six corners are all back at `safe` is as it was there, where it was not in a new contact,
+  // so every round steps some vertex back or ends the loop (at most five times per vertex). No
+  // round count triggers a global rollback: that froze whole meshes (docs/quality.md).
   constexpr float kSmallestFraction = 1.0f / 8;
-  constexpr int kMaxRounds = 32;
   held_.clear();
   // found_ is refilled at the end of each round, after the round has read it.
   const std::vector<uint64_t>& found = contacts(X, true);
   for (int round = 0; !found.empty(); ++round) {
     if (round == 0) candidate_ = X;
-    if (round >= kMaxRounds) {  // every vertex back
-      for (int v : held_) step_fraction_[v] = 1.0f;
-      held_.resize(X.size());
-      std::iota(held_.begin(), held_.end(), 0);
-      X = safe;
-      break;
-    }
     const uint32_t stamp = ++stamp_count_;  // each vertex steps back once per round
     touched_.clear();
     for (uint64_t key : found) {
@@ -255,6 +289,7 @@ void SelfIntersectionGuard::limit_stage(const std::vector<Vector3d>& safe, std::
           if (round_stamp_[v] == stamp) continue;
           round_stamp_[v] = stamp;
           float& t = step_fraction_[v];
+          if (t == 0.0f) continue;  // already at `safe`
           if (t == 1.0f) held_.push_back(v);
           t = t > kSmallestFraction ? 0.5f * t : 0.0f;
           X[v] = safe[v] + static_cast<double>(t) * (candidate_[v] - safe[v]);
@@ -263,12 +298,19 @@ void SelfIntersectionGuard::limit_stage(const std::vector<Vector3d>& safe, std::
         }
       }
     }
+    // Every corner of every contact is back at `safe` already: contacts that `safe` itself had (a
+    // start the caller set with set_vertices() is taken as it is), nothing left to step back.
+    if (touched_.empty()) break;
     std::sort(touched_.begin(), touched_.end());
     touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
     contacts_of(touched_, X);  // only faces that moved can have come into contact
   }
   last_held_ = static_cast<int>(held_.size());
-  for (int v : held_) step_fraction_[v] = 1.0f;
+  denied_ = 0;
+  for (int v : held_) {
+    denied_ = std::max(denied_, (candidate_[v] - X[v]).cwiseAbs().maxCoeff());
+    step_fraction_[v] = 1.0f;
+  }
 }
 
 }  // namespace gauss

@@ -338,6 +338,12 @@ void GaussSolver::step() {
   };
   if (method_ == Method::cubic) iteration_.advance(X_, cubic_.carried_state(), rest_, 1.0, map);
   else iteration_.advance(X_, rest_, 1.0, map);
+  denied_reldv_ = 0;
+  if (guard_ && guard_->last_held() > 0) {  // measured as reldV is: over the largest displacement
+    double displacement = kStillDisplacement;
+    for (size_t v = 0; v < X_.size(); ++v) displacement = std::max(displacement, (X_[v] - rest_[v]).cwiseAbs().maxCoeff());
+    denied_reldv_ = guard_->last_denied() / displacement;
+  }
   ++step_count_;
   tuner_.record(threads, ms_since(start));
   timings_.threads = threads;
@@ -347,7 +353,7 @@ int GaussSolver::step_until(double tolerance, int max_steps) {
   if (max_steps < 0) throw std::invalid_argument("the number of steps must be >= 0");
   set_tolerance(tolerance);
   int taken = 0;
-  while (taken < max_steps && !converged()) {
+  while (taken < max_steps && last_reldv() >= tolerance_) {  // until converged or held back
     step();
     ++taken;
   }

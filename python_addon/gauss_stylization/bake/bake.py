@@ -20,6 +20,10 @@ shape) and runs Bake Steps (settings.bake_steps) steps, so the style carries ove
 from frame to frame instead of being rebuilt (no flicker). Without warm start
 every frame runs Bake Steps steps from its own rest shape: a frame's result does
 not depend on the other frames, so ranges can be baked apart and give the same frames.
+
+Warm-up (a farm chunk with warm start, farm.py): the bake starts ``warmup`` frames before
+frame_start and writes nothing for them, so its first written frame continues a run of
+warmup + 1 frames instead of starting cold; docs/baking.md has how close that comes to one bake.
 """
 
 import os
@@ -96,6 +100,13 @@ class CacheTarget:
         pass
 
 
+class WarmUpTarget(CacheTarget):
+    """A warm-up frame's target: the result is only carried to the next frame, not written."""
+
+    def write(self, coords):
+        pass
+
+
 class _Bake:
     """What both bakes share: the file, the suspended modifier, the scene frame, the settings."""
 
@@ -157,14 +168,19 @@ class _Bake:
 
 
 class AnimationBake(_Bake):
-    def __init__(self, context, obj, frame_start, frame_end, filepath, warm_start):
+    def __init__(self, context, obj, frame_start, frame_end, filepath, warm_start, warmup=0):
+        """warmup: with warm start, frames baked before frame_start and not written (ignored without)."""
         if frame_end < frame_start:
             raise SettingsError("The last frame (%d) is before the first (%d)" % (frame_end, frame_start))
+        if warmup < 0:
+            raise SettingsError("Warm-up frames must be 0 or more (got %d)" % warmup)
         super().__init__(context, obj, filepath, frame_end - frame_start + 1)
         self.frame_start, self.warm_start = frame_start, warm_start
+        self.warmup = warmup if warm_start else 0
+        self.baked = 0  # frames computed, warm-up ones included
         self.previous = None  # (rest, result) of the last baked frame
         try:
-            self.scene.frame_set(frame_start)
+            self.scene.frame_set(frame_start - self.warmup)
             self.first = sources.read(obj, True)
             self.first.release()  # only its arrays and weights are needed: later frames share them
             self._open(self.first.arrays.num_vertices, frame_start)
@@ -172,17 +188,27 @@ class AnimationBake(_Bake):
             self.cancel()
             raise
 
+    @property
+    def next_frame(self):
+        """The frame advance() bakes next; before frame_start while warming up."""
+        return self.frame_start - self.warmup + self.baked
+
+    @property
+    def warming_up(self):
+        return self.baked < self.warmup
+
     def advance(self):
-        """Bake the next frame."""
+        """Bake the next frame (a warm-up frame, written nowhere, while warming up)."""
         self._check_unchanged()
-        frame = self.frame_start + self.done
+        frame = self.next_frame
         source = self.first
-        if self.done:
+        if self.baked:
             self.scene.frame_set(frame)
             depsgraph = bpy.context.evaluated_depsgraph_get()
             source = self.first.moved(sources.evaluated_coords(self.obj, depsgraph, self.first.arrays,
                                                                "at frame %d" % frame))
-        session = Session(Plan(self.obj, source, CacheTarget(self.writer)))
+        target = WarmUpTarget(None) if self.warming_up else CacheTarget(self.writer)
+        session = Session(Plan(self.obj, source, target))
         steps = self.settings.bake_steps
         if self.warm_start:
             if self.previous is None:
@@ -196,7 +222,9 @@ class AnimationBake(_Bake):
             session.step(steps)
         if self.warm_start:
             self.previous = (source.arrays.coords, session.result.copy())
-        self.done += 1
+        if not self.warming_up:
+            self.done += 1
+        self.baked += 1
 
     def finish(self):
         super().finish(self.frame_start, last=True)

@@ -22,9 +22,22 @@ from ..run.session import ensure_style_slot
 from ..run.targets import stylize_problem
 from ..settings import schema
 from ..settings.validation import object_problem, poll_result
+from ..view.viewport import redraw_sidebars
 from . import bake
 
 TICK_BUDGET = 0.1  # seconds of baking per tick (at least one frame), so the UI stays responsive
+# The sidebar gets the bake's box at its start, and Blender slides the panels below it into place over
+# 0.3 s, a step per redraw, from the end of the box's first drawing (where it lays the panels out);
+# until then the sub-panels' headers are drawn over the panel, and a frame baked meanwhile (a second
+# or more on a big mesh) held them there. The box's layout code runs before that end, and on a slow
+# machine the drawing takes a good part of the 0.3 s, so the slide is timed from the box's second
+# drawing, which begins after the first has ended: the first frame waits for a drawing of the box this
+# long after that one (the panels are in place then), or, where the box is not shown (the sidebar
+# closed, another tab), for BOX_WAIT_LIMIT.
+PANELS_SETTLE = 0.35
+BOX_WAIT_LIMIT = 1.0
+SETTLE_WAIT_LIMIT = 10.0  # a box drawn once, then hidden: the bake goes on without waiting for the panels
+PANEL_SECONDS = 0.25  # how often the sidebar's box is redrawn with the frame count
 FRAME_LIMIT = schema.MAX_FRAME
 _STEPS = schema.field(schema.OBJECT, "iterations")
 
@@ -70,6 +83,12 @@ class _BakeOperator:
 
     def panel_state(self):
         """(title, [(text, icon)], key hints) for the sidebar's box while the bake runs (ui.py)."""
+        now = time.monotonic()
+        self._box_drawings += 1
+        if self._box_drawings == 2:
+            self._box_drawn = now
+        elif self._box_drawn is not None and now >= self._box_drawn + PANELS_SETTLE:
+            self._panels_settled = True
         return ("Baking to a point cache", [("%s: %s" % (self._obj_name, self._progress_text()), 'FILE_CACHE')],
                 ("Esc: cancel (nothing is written)",))
 
@@ -127,6 +146,9 @@ class _BakeOperator:
         self._progress = ProgressReport(context, self._title())
         self._update(self._progress)
         self._timer = context.window_manager.event_timer_add(TICK_SECONDS, window=context.window)
+        self._started = self._next_tick = time.monotonic()
+        self._panel_drawn = 0.0
+        self._box_drawings, self._box_drawn, self._panels_settled = 0, None, False  # see PANELS_SETTLE
         context.window_manager.modal_handler_add(self)
         runs.start([self._job.obj], self)
         return {'RUNNING_MODAL'}
@@ -146,7 +168,11 @@ class _BakeOperator:
             self.stop(context, keep=False)
             self.report({'WARNING'}, "Bake of '%s' cancelled; nothing was written" % self._obj_name)
             return {'CANCELLED'}
-        if event.type != 'TIMER':
+        # A modal operator sees every timer's events; only as often as its own timer runs does the
+        # bake take a tick, so that the events of others (the panels' animation) pass between its ticks.
+        if event.type != 'TIMER' or time.monotonic() < self._next_tick:
+            return {'PASS_THROUGH'}
+        if not self._panels_in_place(context):
             return {'PASS_THROUGH'}
         deadline = time.perf_counter() + TICK_BUDGET
         while not self._job.finished:
@@ -156,10 +182,23 @@ class _BakeOperator:
             if time.perf_counter() > deadline:
                 break
         self._update(self._progress)
+        self._next_tick = time.monotonic() + TICK_SECONDS
+        if self._next_tick > self._panel_drawn + PANEL_SECONDS:  # the box's "frame N of M"
+            self._panel_drawn = self._next_tick
+            redraw_sidebars(context)
         if not self._job.finished:
             return {'PASS_THROUGH'}
         self._end(context)
         return self._finish()
+
+    def _panels_in_place(self, context):
+        """May the bake take its frames, the sidebar's panels being in place (PANELS_SETTLE)?"""
+        waited = time.monotonic() - self._started
+        if self._panels_settled or waited > SETTLE_WAIT_LIMIT or (self._box_drawings == 0 and waited > BOX_WAIT_LIMIT):
+            self._panels_settled = True
+            return True
+        redraw_sidebars(context)  # the slide goes on at each redraw
+        return False
 
     def stop(self, context, keep=False):
         """Cancel (runs.stop_all calls this on undo and when the add-on is disabled)."""

@@ -112,18 +112,54 @@ class PointCache:
 
 
 def read(path):
-    """Read a .pc2 file; ValueError if it is not a complete one."""
-    with open(path, "rb") as handle:
-        header = handle.read(HEADER.size)
-        if len(header) != HEADER.size:
-            raise ValueError("%s is too short for a PC2 header" % path)
-        magic, version, points, start, rate, samples = HEADER.unpack(header)
-        if magic != MAGIC or version != VERSION:
-            raise ValueError("%s is not a version %d PC2 file" % (path, VERSION))
-        if points <= 0 or samples < 0:
-            raise ValueError("%s has %d points and %d samples" % (path, points, samples))
-        if os.fstat(handle.fileno()).st_size != file_size(points, samples):
-            raise ValueError("%s is truncated or has trailing data (%d samples of %d points expected)"
-                             % (path, samples, points))
-        frames = np.fromfile(handle, FRAME_DTYPE, samples * points * 3)
+    """Read a .pc2 file; ValueError if it is not a complete one (header())."""
+    points, start, rate, samples = header(path)
+    frames = np.fromfile(path, FRAME_DTYPE, samples * points * 3, offset=HEADER.size)
     return PointCache(frames.astype(np.float32).reshape(samples, points, 3), start, rate)
+
+
+def header(path):
+    """(points, start, rate, samples) of a complete .pc2 file; ValueError as read()."""
+    with open(path, "rb") as handle:
+        data = handle.read(HEADER.size)
+        size = os.fstat(handle.fileno()).st_size
+    if len(data) != HEADER.size:
+        raise ValueError("%s is too short for a PC2 header" % path)
+    magic, version, points, start, rate, samples = HEADER.unpack(data)
+    if magic != MAGIC or version != VERSION:
+        raise ValueError("%s is not a version %d PC2 file" % (path, VERSION))
+    if points <= 0 or samples < 0 or size != file_size(points, samples):
+        raise ValueError("%s is truncated or has trailing data (%d samples of %d points expected)"
+                         % (path, samples, points))
+    return points, start, rate, samples
+
+
+def merge(paths, out):
+    """Join the caches of consecutive frame ranges of one object (farm chunks, in any order) into
+    ``out``: the same bytes as one cache of the whole range. The chunks must have the same points and
+    sample rate and follow one another without gap or overlap (ValueError naming the culprit).
+    Returns (start, samples) of the joined cache."""
+    if not paths:
+        raise ValueError("no chunks to merge")
+    chunks = sorted((header(path) + (path,) for path in paths), key=lambda chunk: chunk[1])
+    points, start, rate, _samples, first = chunks[0]
+    expected = start
+    for chunk_points, chunk_start, chunk_rate, samples, path in chunks:
+        if (chunk_points, chunk_rate) != (points, rate):
+            raise ValueError("%s has %d points at %g frames per sample, %s %d at %g: not chunks of one bake"
+                             % (path, chunk_points, chunk_rate, first, points, rate))
+        if chunk_start != expected:
+            raise ValueError("%s starts at frame %g, the chunks before it end before frame %g: %s"
+                             % (path, chunk_start, expected, "a gap" if chunk_start > expected else "an overlap"))
+        expected = chunk_start + samples * rate
+    total = sum(chunk[3] for chunk in chunks)
+    writer = Writer(out, points, total, start=start, rate=rate)
+    try:
+        for chunk in chunks:
+            for frame in read(chunk[4]).frames:
+                writer.add(frame)
+        writer.commit()
+    except BaseException:
+        writer.discard()
+        raise
+    return start, total

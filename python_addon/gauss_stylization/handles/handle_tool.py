@@ -104,13 +104,16 @@ class HandleTool:
         return drag.part
 
     def hint(self):
-        """What the status bar says during a drag, or None."""
+        """What the header and status bar say during a drag (instead of the run's keys: a drag's Esc
+        puts the handle back, it does not cancel the run), or None."""
         if self.drag is None:
             return None
         axis = self.drag.axis
-        where = "free (X / Y / Z: along an axis)" if axis is None else "along %s %s (press again: %s)" % (
-            axis[0].lower(), "XYZ"[axis[1]], "local axis" if axis[0] == 'GLOBAL' else "free")
-        return "Dragging a handle %s; release: drop, Esc / right-click: put back" % where
+        key = None if axis is None else "XYZ"[axis[1]]
+        where = "free (X / Y / Z: along an axis)" if axis is None else "along %s %s (%s again: %s)" % (
+            axis[0].lower(), key, key, "local" if axis[0] == 'GLOBAL' else "free")
+        return modal_events.KeysNote(
+            "Dragging a handle %s  |  Release / Enter: drop  |  Esc / Right-click: put back" % where)
 
 
 def tool_of(run):
@@ -134,6 +137,8 @@ def _show_hint(run, context, tool):
 def grab(run, context, event):
     """modal_events handler (HANDLES): a left press on a pin grabs its handle."""
     if event.type != 'LEFTMOUSE' or event.value != 'PRESS' or run.preparing:
+        return None
+    if context.mode == 'PAINT_WEIGHT':  # a press there paints (the status bar says so)
         return None
     if not free_viewport_at(context, event.mouse_x, event.mouse_y):
         return None  # headers, sidebar, gizmo, other editors: Blender's

@@ -13,12 +13,13 @@ stepped until a change of its settings, styles or pins makes its solver forget
 that, then it resumes by itself.
 """
 
+import math
 import time
 from collections import deque
 
 from ..errors import SettingsError
 from ..settings.settings_io import to_dict
-from .progress import convergence_text, progress_text
+from .progress import progress_text, settling_details, settling_fraction, settling_text
 from .session import TIMINGS_KEPT, Session
 from .solver_setup import SolverSetup
 from .targets import TITLE
@@ -26,6 +27,12 @@ from .targets import TITLE
 TICK_SECONDS = 0.01  # the timer of a run in the UI (a Stylize, a bake): how often it gets a tick
 TICK_BUDGET = 1.0 / 30.0  # seconds of solver steps per tick before the rest wait for the next one
 CONVERGED = "Converged"  # status bar and panel: the object is not stepped until something changes
+HELD_BACK = "held back by Avoid Self-Intersections at %d vertices"  # the guard, not convergence, stopped it
+
+
+def held_back(session):
+    """Did Avoid Self-Intersections, rather than convergence, stop ``session``'s run (Solver.held_back)?"""
+    return session.held_back
 
 
 class TickOutcome:
@@ -48,6 +55,9 @@ class LiveRun:
         self.next = 0        # index of the session the next tick starts with
         self.tick_ms = deque(maxlen=TIMINGS_KEPT)  # ms of the last TIMINGS_KEPT ticks that stepped
         self.held = False    # hold_for_save() showed the meshes as before the run; resume_after_save() not yet
+        # session -> (Tolerance, the most it has settled since its last change at that Tolerance): the
+        # last step's change rises at times (the accelerated iteration restarts); "settling" does not go back.
+        self.settled = {}
 
     @property
     def preparing(self):
@@ -56,7 +66,7 @@ class LiveRun:
     @property
     def converged(self):
         """The sessions a tick leaves alone because they converged (as their last sync left them)."""
-        return {s for s in self.sessions if s.converged and s.busy is None and s not in self.paused}
+        return {s for s in self.sessions if s.at_rest and s.busy is None and s not in self.paused}
 
     # -- set-up -------------------------------------------------------------------
 
@@ -106,13 +116,18 @@ class LiveRun:
                 continue
             if session.painting:  # held still while its weights are painted; read on the way back
                 continue
-            if session.converged:  # and nothing changed since: no step, no CPU
+            if session.at_rest:  # and nothing changed since: no step, no CPU
                 continue
+            tolerance = session.applied["tolerance"]
+            before, settled = self.settled.get(session, (None, 0.0))
+            if before != tolerance or not math.isfinite(session.reldv):  # inf: a setting changed
+                settled = 0.0
             try:
                 session.step()
             except (SettingsError, ValueError, RuntimeError) as exc:
                 outcome.stopped.append((session, str(exc)))
                 continue
+            self.settled[session] = (tolerance, max(settled, settling_fraction(session.reldv, tolerance) or 0.0))
             stepped += 1
             self.next = (index + 1) % count
             if time.perf_counter() - start > budget:
@@ -128,6 +143,7 @@ class LiveRun:
         """Restore ``session``'s object as far as it exists and take it out of the run."""
         self.sessions.remove(session)
         self.paused.pop(session, None)
+        self.settled.pop(session, None)
         self.next = 0
         session.cancel()
 
@@ -197,6 +213,13 @@ class LiveRun:
         """Steps of the first object (what the redo panel repeats)."""
         return self.sessions[0].steps if self.sessions else 0
 
+    def settling(self, session):
+        """The most ``session`` has settled since its last change (settling_fraction), or None before
+        its first step and after a change it has not stepped since."""
+        if session not in self.settled or not math.isfinite(session.reldv):
+            return None
+        return self.settled[session][1]
+
     def status_text(self):
         """One line for the header and the status bar (without the key hints)."""
         if self.preparing:
@@ -204,16 +227,20 @@ class LiveRun:
         sessions = self.sessions
         if not sessions:
             return TITLE
-        converged = self.converged
+        held_back_ones = [s for s in sessions if held_back(s)]
+        converged = self.converged - set(held_back_ones)
         if len(sessions) == 1:
-            text = TITLE + ": step %d" % sessions[0].steps
-            towards = convergence_text(sessions[0].reldv, sessions[0].applied["tolerance"])
-            if converged:
+            session = sessions[0]
+            text = TITLE + ": step %d" % session.steps
+            fraction = self.settling(session)
+            if held_back_ones:
+                text += "  |  " + HELD_BACK % session.solver.held_vertices
+            elif converged:
                 text += "  |  " + CONVERGED
-            elif towards:
-                text += "  |  " + towards
-            if not converged and sessions[0].step_ms and self.tick_ms:
-                text += "  |  %.1f ms/step, %.1f ms/tick" % (sessions[0].step_ms[-1], self.tick_ms[-1])
+            elif fraction is not None:
+                text += "  |  " + settling_text(fraction)
+            if not converged and not held_back_ones and session.step_ms and self.tick_ms:
+                text += "  |  %.1f ms/step, %.1f ms/tick" % (session.step_ms[-1], self.tick_ms[-1])
         else:
             steps = [session.steps for session in sessions]
             text = TITLE + ": %d objects, step %s" % (
@@ -222,11 +249,13 @@ class LiveRun:
                 text += "  |  " + CONVERGED + " (all)"
             elif converged:
                 text += "  |  %s: %s" % (CONVERGED, ", ".join(sorted("'%s'" % s.name for s in converged)))
-            if self.tick_ms and len(converged) < len(sessions):
+            for session in held_back_ones:
+                text += "  |  '%s' %s" % (session.name, HELD_BACK % session.solver.held_vertices)
+            if self.tick_ms and len(converged) + len(held_back_ones) < len(sessions):
                 text += "  |  %.1f ms/tick" % self.tick_ms[-1]
         for session, why in self.paused.items():
             text += "  |  " + (("'%s' paused: " % session.name) if len(sessions) > 1 else "paused: ") + why
-        held = sum(session.solver.held_vertices for session in sessions)
+        held = sum(session.solver.held_vertices for session in sessions if session not in held_back_ones)
         if held:
             text += "  |  %d vertices held back from passing through" % held
         for session in sessions:
@@ -241,15 +270,17 @@ class LiveRun:
         return next((session.busy for session in self.sessions if session.busy is not None), None)
 
     def panel_title(self):
-        """The sidebar box's first row: "Preparing... 40%", "Stylizing live" or "Converged"."""
+        """The sidebar box's first row: "Preparing... 40%", "Stylizing live", "Converged" or "Held back"."""
         if self.preparing:
             return progress_text("Preparing", self.setup.fraction)
-        if self.sessions and len(self.converged) == len(self.sessions):
-            return CONVERGED
+        stopped = [s for s in self.sessions if s in self.converged or held_back(s)]
+        if self.sessions and len(stopped) == len(self.sessions):
+            return "Held back" if any(held_back(s) for s in stopped) else CONVERGED
         return "Stylizing live"
 
     def panel_lines(self):
-        """(text, icon) rows for the sidebar under the title: each object and how far it is."""
+        """(text, icon) or (text, icon, tooltip) rows for the sidebar under the title: each object and
+        how far it is."""
         if self.preparing:
             return [(plan.name, 'MESH_DATA') for plan in self.planned.plans]
         lines = []
@@ -259,11 +290,15 @@ class LiveRun:
                 lines.append(("%s: %s" % (session.name, progress_text(busy.text(), busy.fraction)), 'TIME'))
             elif session in self.paused:
                 lines.append(("%s: paused" % session.name, 'PAUSE'))
+            elif held_back(session):
+                lines.append(("%s: %s, step %d" % (session.name, HELD_BACK % session.solver.held_vertices,
+                                                   session.steps), 'ERROR'))
             elif session in self.converged:
                 lines.append(("%s: converged, step %d" % (session.name, session.steps), 'CHECKMARK'))
             else:
                 lines.append(("%s: step %d" % (session.name, session.steps), 'MESH_DATA'))
-                towards = convergence_text(session.reldv, session.applied["tolerance"])
-                if towards:
-                    lines.append((towards, 'BLANK1'))
+                fraction = self.settling(session)
+                if fraction is not None:
+                    lines.append((settling_text(fraction), 'BLANK1',
+                                  settling_details(session.reldv, session.applied["tolerance"])))
         return lines

@@ -14,7 +14,8 @@ business) or what modal() returns: {'RUNNING_MODAL'} to take the event,
     run.preparing           -> True while the solvers are still being set up
     run.live.sessions       -> the session.Session of each object in the run
     run.scratch             -> dict for handlers' own state during this run, by handler name
-    run.notes               -> dict of texts the status bar shows after the run's own, by name
+    run.notes               -> dict of texts the status bar shows after the run's own, by name; a
+                               KeysNote there takes the place of the run's texts while it is set
     run.show_status(context)   redraws the header and status bar (after a handler changed notes)
 
 Another feature adds its handler with ``add(handler, order, on_end)`` when it
@@ -29,12 +30,17 @@ from ..view.viewport import drag_distance_exceeded, free_viewport_at
 from .runs import UNDO_CANCELLED
 
 DRAGS = 50      # a drag in progress (a pin handle): its Esc puts it back, its Enter drops it
-KEYS = 100      # Enter, Esc, Ctrl+Z, Ctrl+Shift+Z, Tab
+KEYS = 100      # Enter, Esc, Ctrl+Z, Ctrl+Shift+Z, Tab (not Ctrl+Tab)
 OVERLAYS = 150  # things drawn over the viewport that take presses (the Gauss sphere), over the pins
 HANDLES = 200   # for things in the viewport that take presses and drags (pin handles)
 CLICKS = 300    # a plain click in the free viewport keeps, a right-click cancels
 
 _handlers = []  # (order, handler, on_end), sorted by order
+
+
+class KeysNote(str):
+    """A note (run.notes) of a handler that has the keys for now, e.g. a handle being dragged: the
+    header and status bar show it alone, so that no key is said to do two things."""
 
 
 def add(handler, order, on_end=None):
@@ -70,8 +76,9 @@ def run_ended(run, context, keep):
 # -- the run's own handlers ----------------------------------------------------------------
 
 def keys(run, context, event):
-    """Enter keeps, Esc cancels, so do Ctrl+Z and Ctrl+Shift+Z (saying so); no mode switch under
-    a run. During the set-up only Esc and undo act (there is nothing to keep yet)."""
+    """Enter keeps, Esc cancels, so do Ctrl+Z and Ctrl+Shift+Z (saying so); Tab (Edit Mode, which
+    would end the run) is blocked, Ctrl+Tab goes on to the mode pie. During the set-up only Esc and
+    undo act (there is nothing to keep yet)."""
     if event.value != 'PRESS':
         return None
     if event.type == 'ESC':
@@ -82,7 +89,7 @@ def keys(run, context, event):
         return None
     if event.type in {'RET', 'NUMPAD_ENTER'}:
         return run.end(context, keep=True)
-    if event.type == 'TAB':
+    if event.type == 'TAB' and not event.ctrl:  # Ctrl+Tab: the mode pie, the way to Weight Paint
         return {'RUNNING_MODAL'}
     return None
 

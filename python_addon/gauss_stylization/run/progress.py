@@ -34,12 +34,33 @@ def short_number(value):
     return "%se%d" % (mantissa, int(exponent))
 
 
-def convergence_text(change, tolerance):
-    """How far a run is from converging: "change 3.1e-3 → 1.0e-3" (its last step's relative change
-    and the Tolerance it converges at), or None before its first step and after a setting changed."""
+SETTLED_BEFORE = 0.99  # the most "settling" says: 100% is for "converged" alone
+
+
+def settling_fraction(change, tolerance):
+    """How far a run has settled, 0..SETTLED_BEFORE, from its last step's relative change (reldV) on a
+    log scale: 0 at a change of 1 (a first step: as long as the whole way so far), 1 at the Tolerance,
+    each tenfold drop in change the same stretch. None before the first step and after a setting changed
+    (an infinite change)."""
     if not math.isfinite(change):
         return None
-    return "change %s \u2192 %s" % (short_number(change), short_number(tolerance))
+    if not 0.0 < tolerance < 1.0:  # nothing to measure against
+        return 0.0
+    if change <= 0.0:
+        return SETTLED_BEFORE
+    fraction = math.log(change) / math.log(tolerance)
+    return min(max(fraction, 0.0), SETTLED_BEFORE)
+
+
+def settling_text(fraction):
+    """"settling, 80%" (an artist's words for settling_fraction()'s number)."""
+    return "settling, %d%%" % int(100.0 * fraction)
+
+
+def settling_details(change, tolerance):
+    """The numbers behind "settling": the tooltip of the sidebar's progress row."""
+    return ("The last step changed the mesh by %s of its change so far; it converges (and stops) below %s "
+            "(Tolerance)" % (short_number(change), short_number(tolerance)))
 
 
 class ProgressReport:

@@ -16,6 +16,7 @@ holds what Esc would leave, while the run goes on.
 
 import bpy
 
+from .. import app_handlers
 from . import undo_guard
 
 # Object pointer -> its live run, so a second Stylize or a Reset cannot interfere with it.
@@ -146,14 +147,8 @@ HANDLERS = (("undo_pre", _end_runs_before_undo), ("redo_pre", _end_runs_before_r
 
 
 def register_handlers():
-    for name, handler in HANDLERS:
-        handlers = getattr(bpy.app.handlers, name)
-        if handler not in handlers:
-            handlers.append(handler)
+    app_handlers.add(HANDLERS)
 
 
 def unregister_handlers():
-    for name, handler in HANDLERS:
-        handlers = getattr(bpy.app.handlers, name)
-        if handler in handlers:
-            handlers.remove(handler)
+    app_handlers.remove(HANDLERS)

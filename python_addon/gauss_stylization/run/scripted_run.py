@@ -72,8 +72,9 @@ def _advance(session, count, show):
         if not until:
             show(done / limit, "Stylizing '%s': step %d of %d" % (session.name, done, count))
             continue
-        if session.converged:
-            show(1.0, "Stylizing '%s': converged at step %d" % (session.name, done))
+        if session.at_rest:
+            show(1.0, "Stylizing '%s': %s at step %d"
+                 % (session.name, "held back" if session.held_back else "converged", done))
             break
         fraction = max(fraction, done / limit, _closeness(session.reldv, tolerance))
         show(fraction, "Stylizing '%s': step %d, until converged (reldV %.1e, Tolerance %g)"
@@ -85,6 +86,10 @@ def _until_converged_note(session, steps):
     """(level, text) of how a run until converged ended."""
     if session.converged:
         return 'INFO', "'%s' converged after %d steps" % (session.name, steps)
+    if session.held_back:
+        return 'WARNING', ("'%s' stopped after %d steps, held back by Avoid Self-Intersections at %d "
+                           "vertices short of where the style pulls them (it did not converge); the "
+                           "shape is kept" % (session.name, steps, session.solver.held_vertices))
     return 'WARNING', ("'%s' did not converge within %d steps (its last step changed it by %.1e of its "
                        "displacement, its Tolerance is %g); the shape after %d steps is kept"
                        % (session.name, steps, session.reldv, session.solver.tolerance, steps))

@@ -22,7 +22,7 @@ import numpy as np
 from .. import native
 from ..errors import SettingsError
 from ..mesh import mesh_io, output, rest_store, source as sources
-from ..settings import schema, styles
+from ..settings import paint_curve, schema, styles
 from ..settings.fields import Live, changes
 from ..settings.settings_io import add_slot, to_dict
 from ..settings.validation import check_coordinates, check_object, check_pins, check_settings
@@ -116,7 +116,8 @@ class Plan:
         takes a vertex's strength from its faces, see styles.face_weights)."""
         weights = self.weights if weights is None else weights
         groups = [slot.vertex_group for slot in settings.styles]
-        return styles.face_weights(self.arrays, weights, groups, settings.uncovered), None
+        self.paint_steepness = paint_curve.steepness(settings.method, settings.lam)
+        return styles.face_weights(self.arrays, weights, groups, settings.uncovered, self.paint_steepness), None
 
     @property
     def num_vertices(self):
@@ -270,8 +271,9 @@ class Session:
         new_styles = faces = pins = None
         if Live.STYLES in changed:
             new_styles = styles.make_styles(self.gauss_core, settings.styles)
-        if Live.REGIONS in changed:
-            faces = self.plan.regions_for(settings, self.weights)
+        if Live.REGIONS in changed or (Live.SETTER in changed and self.plan.paint_steepness !=
+                                       paint_curve.steepness(settings.method, settings.lam)):
+            faces = self.plan.regions_for(settings, self.weights)  # the paint curve follows Method and Lambda
         if Live.PINS in changed:
             pins = styles.pinned_vertices(self.weights, settings.pin_group)
             check_pins(self.obj, pins, self.arrays.triangles)
@@ -323,6 +325,16 @@ class Session:
         """Did the last step move the mesh by less than the Tolerance, with nothing changed since?
         (The solver forgets it at any change of settings, styles or pins.)"""
         return self.solver.converged
+
+    @property
+    def held_back(self):
+        """Did the run stop moving only because Avoid Self-Intersections holds it (not converged)?"""
+        return self.solver.held_back
+
+    @property
+    def at_rest(self):
+        """Converged or held back: another step would not move the mesh, until something changes."""
+        return self.solver.converged or self.solver.held_back
 
     @property
     def reldv(self):

@@ -9,7 +9,7 @@ and scripting work with the usual Blender tools.
 import bpy
 from bpy.props import PointerProperty
 
-from . import schema
+from . import schema, versioning
 from .fields import normal_problem
 
 
@@ -56,7 +56,8 @@ class GaussStyleSlot(bpy.types.PropertyGroup):
 
 
 class GaussSettings(bpy.types.PropertyGroup):
-    __annotations__ = _properties(schema.OBJECT, GaussStyleSlot=GaussStyleSlot)
+    __annotations__ = {**_properties(schema.OBJECT, GaussStyleSlot=GaussStyleSlot),
+                       versioning.STAMP: versioning.stamp_property()}
 
 
 classes = (GaussNormal, GaussStyleSlot, GaussSettings)

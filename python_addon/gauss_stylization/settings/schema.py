@@ -81,6 +81,10 @@ def _not_custom(slot):
 MAX_FRAME = 1048574  # Blender's MAXFRAME: frames range over +-this
 
 
+def _warm_start(settings):
+    return settings.bake_warm_start
+
+
 def _own_bake_range(settings):
     return not settings.bake_scene_range
 
@@ -159,7 +163,7 @@ OBJECT = (
          "left alone), so the shape does not shrink", live=Live.SETTER, panel=Panel.SOLVER),
     Bool("avoid_self_intersections", "Avoid Self-Intersections", "Never let the surface pass through itself: "
          "where a step would make faces cross or touch that did not at the start, their vertices are held "
-         "back (for 3D printing and carving; costs up to about one more step's time)",
+         "back (for 3D printing and carving; each step takes longer: docs/performance.md, The guard's cost)",
          live=Live.SETTER, panel=Panel.SOLVER),
     Bool("use_modifiers", "Use Modifiers", "Stylize the mesh as it is shown: modifiers, armature and shape "
          "keys at the current frame (otherwise the base mesh, under the modifiers)", default=False,
@@ -173,18 +177,24 @@ OBJECT = (
            'MESH', panel=Panel.MAIN),
     VertexGroup("pin_group", "Pin Group", "Vertices in this group (weight above %g) keep their position"
                 % PIN_THRESHOLD, live=Live.PINS, panel=Panel.MAIN),
-    Choice("uncovered", "Uncovered Faces", "Style of the faces outside every style's vertex group",
-           (('FIRST_SLOT', "First Style", "What the styles' Regions leave of a face (1 minus their weights) "
-             "goes to the first style", 0),
-            ('UNSTYLED', "Unstyled", "Faces outside every style's Region only keep their shape; a Region's "
-             "weight below 1 stylizes less", 1)),
-           'FIRST_SLOT', live=Live.REGIONS, panel=Panel.STYLES, text="Other Faces"),
+    # Files saved before Unstyled became the default keep First Style (settings/versioning.py).
+    Choice("uncovered", "Uncovered Faces", "Where what the styles' Regions leave of a face goes when every "
+           "style has a Region (a style without one takes it otherwise)",
+           (('FIRST_SLOT', "First Style", "To the first style, whose own Region then is whole again: painting "
+             "it changes nothing (the rule of files saved before Unstyled became the default)", 0),
+            ('UNSTYLED', "Unstyled", "Nowhere: faces outside every Region only keep their shape, and a "
+             "Region's weight below 1 stylizes less", 1)),
+           'UNSTYLED', live=Live.REGIONS, panel=Panel.STYLES, text="Other Faces"),
     Int("bake_steps", "Bake Steps", "Solver steps per frame of an animation bake (with Warm Start the "
         "first frame runs Script Steps, the others continue from the previous frame)",
         default=10, hard=(1, 100000), soft=(1, 200), panel=Panel.BAKE),
     Bool("bake_warm_start", "Warm Start", "Bake Animation starts each frame from the previous frame's result "
          "(steady style, no flicker). Off: every frame is stylized on its own, so frame ranges baked apart "
          "(render farm) give the same frames", default=True, panel=Panel.BAKE),
+    Int("bake_warmup_frames", "Warm-up", "With Warm Start, frames a farm chunk (bake/farm_cli.py) bakes "
+        "before its first frame without writing them, so that frame continues a run as in one bake; more: "
+        "closer to one bake, slower chunks", default=8, hard=(0, 100000), soft=(0, 50), panel=Panel.BAKE,
+        shown=_warm_start),
     Bool("bake_scene_range", "Scene Range", "Bake Animation bakes the scene's frame range (Frame Start to End); "
          "off: the Start and End below", default=True, panel=Panel.BAKE),
     Int("bake_frame_start", "Start", "First frame Bake Animation bakes", default=1,

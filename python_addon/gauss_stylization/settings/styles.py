@@ -3,7 +3,7 @@
 import numpy as np
 
 from ..errors import SettingsError
-from . import schema
+from . import paint_curve, schema
 from .fields import Live, Where, check_all
 from .schema import CUSTOM, PIN_THRESHOLD, REGION_THRESHOLD
 
@@ -72,22 +72,33 @@ def face_styles(arrays, group_weights, slot_groups, uncovered):
     return polygon_style[arrays.tri_polygon]
 
 
-def _slot_weights(values_of, slot_groups, uncovered, count):
+def _filler(slot_groups, uncovered):
+    """The slot that takes what the Regions leave, or None. Unstyled (the default): the first slot
+    without a Region, none if every slot has one, so a Region on the only slot paints it. First Style
+    (files saved before Unstyled was the default keep it, settings/versioning.py): as it always was,
+    the last slot without a Region, else the first slot, whose own Region then is whole again."""
+    free = [index for index, group in enumerate(slot_groups) if not group]
+    if uncovered == 'FIRST_SLOT':
+        return free[-1] if free else (0 if slot_groups else None)
+    return free[0] if free else None
+
+
+def _slot_weights(values_of, slot_groups, uncovered, count, steepness):
     """(count, #slots) float32: each slot's weight on ``count`` polygons or vertices.
 
     values_of(group): the group's weights there ((count,) floats in [0, 1]). A slot with a
-    Region weighs its group's weight; where Regions overlap their weights add up. The last slot
-    without a Region (with none, and uncovered == 'FIRST_SLOT', the first slot) fills what the
-    Regions leave: 1 minus their summed weight, at least 0."""
+    Region weighs its group's weight; where Regions overlap their weights add up. The filler slot
+    (_filler) takes what the Regions leave: 1 minus their summed weight, at least 0. Without a
+    filler, a face's summed weight says how strongly it is stylized and goes through the paint
+    curve of that ``steepness`` (paint_curve.scale_blend)."""
     weights = np.zeros((count, len(slot_groups)), np.float64)
-    filler = 0 if uncovered == 'FIRST_SLOT' and slot_groups else None
     for index, group in enumerate(slot_groups):
         if group:
             weights[:, index] = values_of(group)
-        else:
-            filler = index
-    if filler is not None:
-        # float64: w + (1 - w) is exactly 1 for every float32 weight w.
+    filler = _filler(slot_groups, uncovered)
+    if filler is None:
+        weights = paint_curve.scale_blend(weights, steepness)
+    else:  # every face is stylized in full: the weights only say how its styles mix
         weights[:, filler] += np.maximum(0.0, 1.0 - weights.sum(axis=1))
     return np.clip(weights, 0.0, 1.0).astype(np.float32)
 
@@ -103,18 +114,19 @@ def region_strength(arrays, vertex_weights):
     return np.where(painted > REGION_THRESHOLD, total / np.maximum(painted, 1e-30), 0.0)
 
 
-def face_weights(arrays, group_weights, slot_groups, uncovered):
+def face_weights(arrays, group_weights, slot_groups, uncovered, steepness):
     """(#triangles, #slots) float32: each solver triangle's weight for each slot (Solver.set_face_weights).
 
-    A slot's weight on a polygon is its Region's strength there (region_strength), which scales the
-    slot's mu: painting a Region in Weight Paint mode paints its strength, 0 leaves the polygon to
-    the other slots. Overlapping Regions blend: the polygon's preference is the weight-scaled sum of
-    its slots'. A slot without a Region, or the first slot for Other Faces, takes what the Regions
-    leave (see _slot_weights). Triangles inherit their polygon's weights; the cubic method takes each
+    A slot's weight on a polygon is its Region's strength there (region_strength; where no slot fills
+    the rest, through the paint curve of ``steepness``, paint_curve.steepness), which scales the slot's mu: painting a
+    Region in Weight Paint mode paints its strength, 0 leaves the polygon to the other slots.
+    Overlapping Regions blend: the polygon's preference is the weight-scaled sum of its slots'. A
+    slot without a Region (or, for Other Faces = First Style, the first slot) takes what the Regions
+    leave (see _filler). Triangles inherit their polygon's weights; the cubic method takes each
     vertex's strength from its faces' (no vertex weights), so weights of 1 give exactly the old
     per-vertex strengths there too."""
     polygons = _slot_weights(lambda group: region_strength(arrays, group_weights[group]), slot_groups,
-                             uncovered, arrays.num_polygons)
+                             uncovered, arrays.num_polygons, steepness)
     return polygons[arrays.tri_polygon]
 
 

@@ -85,6 +85,9 @@ _WIDGETS = {"prop": _draw_prop, "checkbox": _draw_checkbox, "vertex_group": _dra
 # What a label row loses to the panel's margins, a box, its icon and the sidebar's tab strip, in
 # Blender's UI units (20 px at scale 1), and the font size of labels; measured on Blender 3.4's sidebar.
 LABEL_MARGIN_UNITS = 5.0
+# What a list's row loses besides: the buttons beside the list, its frame and scroll bar (Blender 3.4).
+LIST_MARGIN_UNITS = 4.5
+ICON_UNITS = 1.2  # an icon and the gap after it
 DEFAULT_SIDEBAR_PX = 220.0  # Blender's default sidebar width at scale 1 (UI_SIDEBAR_PANEL_WIDTH)
 LABEL_POINTS = 11.0
 
@@ -104,6 +107,15 @@ def label_width(context=None):
     scale = ui_scale(context)
     width = region.width if region is not None and region.type == 'UI' else DEFAULT_SIDEBAR_PX * scale
     return max(width - LABEL_MARGIN_UNITS * 20.0 * scale, 2 * 20.0 * scale)  # never so narrow nothing fits
+
+
+def list_row_width(context=None):
+    """Pixels a row of a list (template_list) in a sidebar panel has, with the list's buttons beside it."""
+    context = context or bpy.context
+    region = context.region
+    scale = ui_scale(context)
+    width = region.width if region is not None and region.type == 'UI' else DEFAULT_SIDEBAR_PX * scale
+    return max(width - LIST_MARGIN_UNITS * 20.0 * scale, 2 * 20.0 * scale)
 
 
 def text_width(text, context=None):

@@ -13,8 +13,12 @@
 // (face_bvh.h) to C and tests the faces whose boxes overlap. Where two faces cross, or come closer
 // than kContactMargin without sharing a corner, and did not already at the start, their corners are
 // moved back towards S (x = S + t (C - S), t halved per round, then 0), and the faces around them are
-// tested again, until no new pair is left. In the worst case every vertex is back at S, which has none:
-// a step can stop short, never pass through. This is the intersection-free line search of Incremental
+// tested again, until no new pair is left. Only the corners of faces in a new contact step back, so a
+// hold stays where the contact is (a global rollback froze whole meshes); at worst those corners are
+// back at S, which has no new contact: a step can stop short, never pass through.
+// A mesh that already crosses itself keeps its crossings, and they may slide on to the neighbouring
+// faces as the surface moves (a pair whose faces each share a corner with a crossing pair's), but no
+// crossing begins anywhere else: held still, the faces around a crossing froze the region around it. This is the intersection-free line search of Incremental
 // Potential Contact (Li et al. 2020) made local to the faces involved, on the discrete states a run
 // shows (the states between two steps are not checked: the margin keeps faces apart by more than
 // rounding, and a move of more than kStageMove is checked in stages of at most that: a part thinner
@@ -72,9 +76,11 @@ class SelfIntersectionGuard {
   // vertices held back (0: X was left as it was).
   int limit(const std::vector<Eigen::Vector3d>& safe, std::vector<Eigen::Vector3d>& X);
 
-  // Pairs in contact at the start (start_from), and held back by the last limit().
-  int64_t allowed_pairs() const { return static_cast<int64_t>(allowed_.size()); }
+  // Vertices held back by the last limit().
   int last_held() const { return last_held_; }
+  // The longest move (largest coordinate) the last limit() took from a held vertex: how far the run
+  // would have gone on without the guard.
+  double last_denied() const { return denied_; }
 
   // Bytes a guard for this mesh holds (its hierarchy and per-vertex buffers; the allowed pairs come
   // on top, as many as the mesh has in contact).
@@ -83,8 +89,12 @@ class SelfIntersectionGuard {
  private:
   // One stage of limit(): a move from `safe` to X no longer than kStageMove.
   void limit_stage(const std::vector<Eigen::Vector3d>& safe, std::vector<Eigen::Vector3d>& X);
-  // Whether a contact of this pair at X is one the start allows.
-  bool allowed(uint64_t key, int f, int g, const std::vector<Eigen::Vector3d>& X) const;
+  // Whether a contact of this pair at X is one the start allows, or one a crossing slides into: f
+  // and g each share a corner with the faces of a pair that crosses (or crossed) since the start.
+  // Those are noted, and become allowed crossings at the end of limit() (take_slid_pairs).
+  bool allowed(uint64_t key, int f, int g, const std::vector<Eigen::Vector3d>& X);
+  bool next_to_crossing(int f, int g) const;
+  void take_slid_pairs();
   // Pairs (f < g, as f * 2^32 + g) in contact at X, without the allowed ones if skip_allowed; sorted.
   // Into found_ (reused: a step allocates nothing once it has grown), which is returned.
   const std::vector<uint64_t>& contacts(const std::vector<Eigen::Vector3d>& X, bool skip_allowed);
@@ -102,7 +112,9 @@ class SelfIntersectionGuard {
   std::vector<uint8_t> closed_star_;      // #V: every edge at the vertex has two faces
   std::vector<uint8_t> flat_star_;        // #V, per check
   std::vector<uint64_t> allowed_;         // sorted: in contact at the start
-  std::vector<uint64_t> crossing_;        // sorted: crossing at the start (a subset)
+  std::vector<uint64_t> crossing_;        // sorted: crossing at the start, and the pairs crossings slid into
+  std::vector<uint64_t> slid_;            // pairs a crossing slid into during the current limit()
+  std::mutex slid_mutex_;                 // contacts() notes them from several threads
   std::vector<Eigen::Vector3d> move_;     // #V: a staged move's whole displacement
   std::vector<Eigen::Vector3d> stage_start_;  // #V
   std::vector<uint8_t> ever_held_;        // #V: held in some stage of the current limit()
@@ -116,6 +128,7 @@ class SelfIntersectionGuard {
   std::mutex found_mutex_;                // contacts() fills found_ from several threads
   std::vector<int> held_in_any_;          // a staged limit(): vertices held in some stage
   int last_held_ = 0;
+  double denied_ = 0;
 };
 
 }  // namespace gauss

@@ -119,6 +119,9 @@ class GaussSolver {
   bool avoid_self_intersections() const { return guard_ != nullptr; }
   // Vertices the guard held back in the last step or pin move (0 when it is off).
   int held_vertices() const { return guard_ ? guard_->last_held() : 0; }
+  // The run has stopped moving because the guard holds it, not because it converged: the last step
+  // moved less than the tolerance, but without the guard its held vertices would have moved more.
+  bool held_back() const { return last_reldv() < tolerance_ && denied_reldv_ >= tolerance_; }
 
   // --- Method: the next step's local step; pins, styles and the factorization stay. ---
   // The first switch to Method::cubic prepares its per-vertex data (O(#V), no factorization). With it,
@@ -136,8 +139,8 @@ class GaussSolver {
   // One iteration of the method's local-global step (Algorithm 1 for Gauss), applied at the
   // momentum point when accelerated, then Keep Volume if it is on.
   void step();
-  // Steps until a step's reldV is below `tolerance` (settings::tolerance), at most max_steps (>= 0)
-  // times; returns the number of steps taken (0 if converged() already holds for this tolerance).
+  // Steps until a step's reldV is below `tolerance` (settings::tolerance): the run converged() or is
+  // held_back(); at most max_steps (>= 0) times; returns the number of steps taken (0 if it already was).
   // Sets tolerance() to `tolerance`. Throws std::invalid_argument (before stepping) on a bad argument.
   int step_until(double tolerance, int max_steps);
   // Current vertices := rest vertices (pins at their targets); step count := 0.
@@ -158,7 +161,8 @@ class GaussSolver {
   // The tolerance converged() compares with: settings::tolerance (checked), set here or by step_until().
   void set_tolerance(double tolerance);
   double tolerance() const { return tolerance_; }
-  bool converged() const { return last_reldv() < tolerance_; }
+  // At rest and not held there by the guard (held_back()).
+  bool converged() const { return last_reldv() < tolerance_ && !held_back(); }
 
   // --- Read-outs. ---
   void copy_vertices(double* out) const;  // #V by 3, caller's frame
@@ -258,6 +262,7 @@ class GaussSolver {
   bool keep_volume_ = settings::keep_volume.default_value;
   std::unique_ptr<SelfIntersectionGuard> guard_;     // while avoid_self_intersections is on
   std::vector<Eigen::Vector3d> safe_;                // #V while it is on: X before the step
+  double denied_reldv_ = 0;                          // the last step's move the guard took back, as reldV
 
   // Per-step buffers (allocated once).
   std::vector<Eigen::Vector3d> normal_star_;                 // #F

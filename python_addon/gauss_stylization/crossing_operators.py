@@ -1,0 +1,85 @@
+"""Select Crossing Faces: the faces of the active mesh that pass through another, selected, so that
+an artist checks a print before exporting it, with Avoid Self-Intersections or without."""
+
+import bmesh
+import bpy
+
+from . import native
+from .errors import NativeModuleError
+from .mesh import crossings
+from .run import runs
+from .settings.validation import poll_result
+
+
+def _problem(context):
+    obj = context.active_object
+    if obj is None or obj.type != 'MESH':
+        return "Select a mesh object first"
+    if obj.mode not in {'OBJECT', 'EDIT'}:
+        return "Only in Object Mode or Edit Mode"
+    return None
+
+
+def said(found):
+    """What the operator reports: how many pairs cross and what it selected."""
+    if not len(found.pairs):
+        return "No faces cross each other"
+    text = "%d pairs of faces cross each other; their %d faces are selected" % (len(found.pairs),
+                                                                              len(found.polygons))
+    if not found.shown:
+        text += " (counted on the mesh under the modifiers, which change its faces)"
+    return text
+
+
+class OBJECT_OT_gauss_select_intersections(bpy.types.Operator):
+    """Select the faces of the active mesh that pass through another face (counted as the 3D-Print
+    toolbox counts them), to check a print before exporting it; Edit Mode shows them"""
+    bl_idname = "object.gauss_select_intersections"
+    bl_label = "Select Crossing Faces"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    @classmethod
+    def poll(cls, context):
+        return poll_result(cls, _problem(context))
+
+    def execute(self, context):
+        obj = context.active_object
+        try:
+            gauss_core = native.core()
+        except NativeModuleError as exc:
+            self.report({'ERROR'}, str(exc))
+            return {'CANCELLED'}
+        if obj.mode == 'EDIT':
+            obj.update_from_editmode()
+        try:
+            found = crossings.find(gauss_core, obj, context.evaluated_depsgraph_get())
+        except ValueError as exc:  # NaN or infinite coordinates
+            self.report({'ERROR'}, "Cannot check '%s': %s" % (obj.name, exc))
+            return {'CANCELLED'}
+        if obj.mode == 'EDIT':
+            self._select_in_edit_mode(context, obj, found.polygons)
+        else:
+            crossings.select_polygons(obj.data, found.polygons)
+            # Edit Mode shows the selection; it would end a live run, so then it waits for the artist.
+            if len(found.polygons) and not runs.is_running(obj) and context.window is not None:
+                bpy.ops.object.mode_set(mode='EDIT')
+                # In vertex select mode Edit Mode would add every face whose corners are all selected.
+                self._select_in_edit_mode(context, obj, found.polygons)
+        self.report({'WARNING'} if len(found.pairs) else {'INFO'}, said(found))
+        return {'FINISHED'}
+
+    @staticmethod
+    def _select_in_edit_mode(context, obj, polygons):
+        mesh = obj.data
+        context.tool_settings.mesh_select_mode = (False, False, True)
+        edit = bmesh.from_edit_mesh(mesh)
+        for element in (*edit.verts, *edit.edges, *edit.faces):
+            element.select_set(False)
+        edit.faces.ensure_lookup_table()
+        for index in polygons:
+            edit.faces[int(index)].select_set(True)
+        edit.select_flush_mode()
+        bmesh.update_edit_mesh(mesh)
+
+
+classes = (OBJECT_OT_gauss_select_intersections,)

@@ -1,0 +1,72 @@
+"""Settings saved by an earlier version keep their meaning when a default changes.
+
+A .blend stores only the settings that were set; one left at its default reads back as today's
+default. So when a default changes, each object's settings carry the version of the rules they were
+written under (``settings_version``, hidden), and a file that loads brings its objects up to date,
+as Blender's own versioning does: the old default is written out where it was in effect, and the
+enum numbers files hold never change.
+
+- 0: before the stamp. Other Faces defaulted to First Style.
+- 1: Other Faces defaults to Unstyled, so a Region on the only style paints it.
+
+A file's objects are brought up to date when it loads (load_post); objects made, or given their
+first style, in this session are stamped when the file is saved (save_pre), since they already
+follow today's rules. An object appended from a file saved before the stamp, or in a file opened
+while the add-on was off, follows today's rules (set Other Faces by hand to get the old result).
+"""
+
+import bpy
+from bpy.props import IntProperty
+
+from .. import app_handlers
+
+VERSION = 1
+STAMP = "settings_version"
+
+
+def stamp_property():
+    """The property GaussSettings carries the stamp in (settings/properties.py)."""
+    return IntProperty(name="Settings Version", default=0, min=0, options={'HIDDEN'},
+                       description="Version of the add-on's rules these settings were written under")
+
+
+def _has_slots(obj):
+    """Settings a file holds and the add-on may write: a local object's, with style slots (Other Faces
+    acts only through them). Asked without reading obj.gauss_stylization where it was never set, since
+    reading it would give every object of the file settings."""
+    return (obj.library is None and obj.is_property_set("gauss_stylization")
+            and len(obj.gauss_stylization.styles) > 0)
+
+
+def bring_up_to_date(settings):
+    """Settings read from a file of an earlier version -> today's, keeping what they did."""
+    if settings.settings_version >= VERSION:
+        return
+    if settings.settings_version < 1 and not settings.is_property_set("uncovered"):
+        settings.uncovered = 'FIRST_SLOT'
+    settings.settings_version = VERSION
+
+
+@bpy.app.handlers.persistent
+def _update_loaded_file(*_args):
+    for obj in bpy.data.objects:
+        if _has_slots(obj):
+            bring_up_to_date(obj.gauss_stylization)
+
+
+@bpy.app.handlers.persistent
+def _stamp_before_save(*_args):
+    for obj in bpy.data.objects:
+        if _has_slots(obj) and obj.gauss_stylization.settings_version < VERSION:
+            obj.gauss_stylization.settings_version = VERSION
+
+
+HANDLERS = (("load_post", _update_loaded_file), ("save_pre", _stamp_before_save))
+
+
+def register_handlers():
+    app_handlers.add(HANDLERS)
+
+
+def unregister_handlers():
+    app_handlers.remove(HANDLERS)

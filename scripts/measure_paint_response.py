@@ -1,0 +1,123 @@
+"""How the share of aligned faces answers a painted Region weight: the table of
+docs/interactive.md#painting-the-strength.
+
+    GAUSS_BUILD_DIR=$PWD/build python3 scripts/measure_paint_response.py [--linear] [--k K] [--scales]
+        [--method gauss|cubic] [--steps N] [--lams 2 4 8] [MESH ...]
+
+Runs gauss_core as the add-on does for one Cube style slot whose Region carries the weights, Other
+Faces Unstyled (default meshes: Spot and the 6K bunny, ../shared/meshes; lambda 2, 4, 8; 100 steps):
+
+- a uniform weight w = 0, .25, .5, .75, 1: the area-weighted share of faces within 10 degrees of a
+  cube normal, against the straight line share(0) + w (share(1) - share(0)), and the largest gap;
+- a gradient of vertex weights from 0 to 1 along the mesh's longest axis (a face: the mean of its
+  corners'): the share over the faces of the light third (weight below 1/3) and of the heavy third
+  (above 2/3), and their difference.
+
+Weights become strengths through the add-on's curve (python_addon/gauss_stylization/settings/
+paint_curve.py, loaded by path); --linear gives the weights to the solver as they are (the rule
+before the curve), --k one steepness for every lambda. --scales instead prints the share for a uniform mu scale
+s (the raw response the curve is derived from).
+"""
+import argparse
+import importlib.util
+import os
+import sys
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.environ.get("GAUSS_BUILD_DIR", os.path.join(ROOT, "build")), "python"))
+sys.path.insert(0, os.path.join(ROOT, "tests", "common"))
+sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
+
+import gauss_core  # noqa: E402
+from measures import aligned_share  # noqa: E402
+from meshes import read_obj  # noqa: E402
+
+MESHES = ("small/spot_triangulated_2930.obj", "bunny/bunny_cubicstylization_6172.obj")
+CUBE = np.vstack([np.eye(3), -np.eye(3)])
+WEIGHTS = (0.0, 0.25, 0.5, 0.75, 1.0)
+SCALES = (0.0, 0.003, 0.01, 0.03, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0)
+
+
+def _curve():
+    path = os.path.join(ROOT, "python_addon", "gauss_stylization", "settings", "paint_curve.py")
+    spec = importlib.util.spec_from_file_location("paint_curve", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _stylized(V, F, lam, face_strength, method, steps):
+    strengths = {"cubic_lambda": lam} if method == "cubic" else {"lam": lam}
+    solver = gauss_core.Solver(V, F, method=method, **strengths)
+    solver.set_styles([gauss_core.Style.preset("cube")])
+    solver.set_face_weights(np.asarray(face_strength, np.float32).reshape(-1, 1))
+    solver.step(steps)
+    return solver.vertices
+
+
+def _share(V, F, lam, face_strength, method, steps):
+    return aligned_share(_stylized(V, F, lam, face_strength, method, steps), F, CUBE)
+
+
+def _gradient(V, F):
+    """Vertex weights 0 -> 1 along the longest principal axis; faces: the mean of their corners'."""
+    centred = V - V.mean(axis=0)
+    axis = np.linalg.svd(centred, full_matrices=False)[2][0]
+    along = centred @ axis
+    vertex = (along - along.min()) / (along.max() - along.min())
+    return vertex[F].mean(axis=1)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("meshes", nargs="*", default=MESHES, help="OBJ paths, relative to ../shared/meshes")
+    parser.add_argument("--linear", action="store_true", help="weights straight to the solver (before the curve)")
+    parser.add_argument("--k", type=float, default=None,
+                        help="the curve's steepness k for every lambda (default: the add-on's, from the method and lambda)")
+    parser.add_argument("--scales", action="store_true", help="share for a uniform mu scale instead")
+    parser.add_argument("--method", default="gauss")
+    parser.add_argument("--steps", type=int, default=100)
+    parser.add_argument("--lams", type=float, nargs="+", default=(2.0, 4.0, 8.0),
+                        help="Lambda (the cubic method: Cubic Lambda)")
+    args = parser.parse_args()
+    curve = _curve()
+
+    def steepness(lam):
+        if args.linear:
+            return 0.0
+        return args.k if args.k is not None else curve.steepness(args.method.upper(), lam)
+    shared = os.path.join(ROOT, "..", "shared", "meshes")
+    if args.scales:
+        print("| mesh | lambda | " + " | ".join("s=%g" % s for s in SCALES) + " |")
+    else:
+        rule = "linear" if args.linear else "k = %g" % args.k if args.k is not None else "k = ln(lambda / %g)" % (
+            curve.PULL_SHOWN)
+        print("rule: %s, method %s, %d steps" % (rule, args.method, args.steps))
+        print("| mesh | lambda | " + " | ".join("w=%g" % w for w in WEIGHTS)
+              + " | largest gap to the line | gradient: light third | heavy third | heavy - light |")
+    print("|---" * (2 + (len(SCALES) if args.scales else len(WEIGHTS) + 4)) + "|")
+    for name in args.meshes:
+        V, F = read_obj(os.path.join(shared, name))
+        label = os.path.splitext(os.path.basename(name))[0]
+        for lam in args.lams:
+            if args.scales:
+                shares = [_share(V, F, lam, np.full(len(F), s), args.method, args.steps) for s in SCALES]
+                print("| %s | %g | %s |" % (label, lam, " | ".join("%.3f" % x for x in shares)), flush=True)
+                continue
+            k = steepness(lam)
+            shares = [_share(V, F, lam, curve.strength(np.full(len(F), w), k), args.method, args.steps)
+                      for w in WEIGHTS]
+            line = [shares[0] + w * (shares[-1] - shares[0]) for w in WEIGHTS]
+            gap = max(abs(a - b) for a, b in zip(shares, line))
+            face_w = _gradient(V, F)
+            result = _stylized(V, F, lam, curve.strength(face_w, k), args.method, args.steps)
+            light = aligned_share(result, F, CUBE, face_mask=face_w < 1.0 / 3.0)
+            heavy = aligned_share(result, F, CUBE, face_mask=face_w > 2.0 / 3.0)
+            print("| %s | %g | %s | %.3f | %.3f | %.3f | %.3f |" % (
+                label, lam, " | ".join("%.3f" % x for x in shares), gap, light, heavy, heavy - light), flush=True)
+
+
+if __name__ == "__main__":
+    main()
