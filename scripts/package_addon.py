@@ -45,6 +45,7 @@ import tempfile
 import tomllib
 import zipfile
 
+import binary_facts  # scripts/binary_facts.py: what a compiled module is, read from its bytes
 import blender_ext_tool  # scripts/blender_ext_tool.py: Blender's own extension build/validate tool
 import verify_addon_install  # scripts/verify_addon_install.py: the --verify-install check
 
@@ -74,6 +75,13 @@ PLATFORMS = {"linux-x64": "linux_x86_64", "windows-x64": "win_amd64",
 WHEEL_PATTERN = re.compile(r"^gauss_core-(?P<version>[^-]+)-cp(?P<major>\d)(?P<minor>\d+)-cp\d+-(?P<platform>[^-]+)\.whl$")
 # The module's file inside a wheel: .so (Linux, macOS) or .pyd (Windows).
 MODULE_IN_WHEEL = re.compile(r"^gauss_core\.[^/]+\.(so|pyd)$")
+# What the module in a wheel for each platform must be (scripts/binary_facts.py's format and arch), and
+# the Python and platform its file name must carry (CPython's extension suffix: cpython-311-x86_64-linux-gnu,
+# cp311-win_amd64, cpython-311-darwin).
+BINARY_FOR_PLATFORM = {"linux-x64": ("ELF64", "x86_64"), "windows-x64": ("PE32+", "x86_64"),
+                       "macos-arm64": ("Mach-O", "arm64"), "macos-x64": ("Mach-O", "x86_64")}
+SUFFIX_FOR_PLATFORM = {"linux-x64": r"cpython-{XY}-x86_64-linux-gnu\.so", "windows-x64": r"cp{XY}-win_amd64\.pyd",
+                       "macos-arm64": r"cpython-{XY}-darwin\.so", "macos-x64": r"cpython-{XY}-darwin\.so"}
 
 
 def fail(message):
@@ -159,14 +167,25 @@ def python_files():
     return files
 
 
-def write_zip(path, entries):
-    """entries: (name in zip, bytes, unix mode). Deterministic output."""
+def write_zip(path, entries, stored=()):
+    """entries: (name in zip, bytes, unix mode); names in `stored` are not compressed. Deterministic
+    output: sorted entries, fixed timestamps and modes."""
     with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED, compresslevel=9) as archive:
         for name, data, mode in sorted(entries):
             info = zipfile.ZipInfo(name, date_time=ZIP_DATE)
-            info.compress_type = zipfile.ZIP_DEFLATED
+            info.compress_type = zipfile.ZIP_STORED if name in stored else zipfile.ZIP_DEFLATED
             info.external_attr = (0o100000 | mode) << 16
             archive.writestr(info, data)
+
+
+def make_reproducible(path):
+    """Rewrites a zip of Blender's extension build with write_zip's order, timestamps and modes (Blender's
+    tool stamps each entry with the file's or the current time, in directory order); the entries' bytes,
+    the wheels' included, are unchanged."""
+    with zipfile.ZipFile(path) as archive:
+        entries = [(info.filename, archive.read(info), mode_of(info.filename)) for info in archive.infolist()]
+        stored = {info.filename for info in archive.infolist() if info.compress_type == zipfile.ZIP_STORED}
+    write_zip(path, entries, stored)
 
 
 def read(path):
@@ -254,6 +273,31 @@ def module_from_wheel(wheel_path):
         return found[0], wheel.read(found[0])
 
 
+def check_wheel_module(wheel_path, python, platform):
+    """Refuses a wheel whose module is not what its tag says: file format and architecture for the
+    platform, the Python it was built for, and the extension suffix of its file name."""
+    wheel = os.path.basename(wheel_path)
+    name, data = module_from_wheel(wheel_path)
+    tag = WHEEL_PATTERN.match(wheel)["platform"]
+    try:
+        found = binary_facts.facts(data)
+    except binary_facts.NotABinary as exc:
+        fail("refusing %s: its module %s is no compiled module (%s)" % (wheel, name, exc))
+    wanted = BINARY_FOR_PLATFORM[platform]
+    problems = []
+    if (found["format"], found["arch"]) != wanted:
+        problems.append("it is %s, the tag %s needs %s %s" % (binary_facts.describe(found), tag, *wanted))
+    if found["python"] != python:
+        problems.append("it was built for Python %s, the tag cp%s needs %s"
+                        % (found["python"] or "(unknown: no BUILT_FOR text, an old build)", python.replace(".", ""), python))
+    suffix = SUFFIX_FOR_PLATFORM[platform].replace("{XY}", python.replace(".", ""))
+    if not re.fullmatch(r"gauss_core\." + suffix, name):
+        problems.append("its file name says another Python or system than the tag (expected gauss_core.%s)"
+                        % suffix.replace("\\", ""))
+    if problems:
+        fail("refusing %s: its module %s does not match the wheel's tag: %s" % (wheel, name, "; ".join(problems)))
+
+
 def wheel_module_line(python, platforms, wheel_names):
     linux = [name for name in wheel_names if "manylinux_" in name]
     glibc = re.search(r"manylinux_(\d+)_(\d+)_", linux[0]) if linux else None
@@ -297,6 +341,7 @@ def build_extensions(python, wheels, version, addon_min, facts, out_dir, blender
         if code != 0 or missing:
             fail("Blender's extension build failed (exit code %d, missing %s):\n%s" % (code, missing, output))
     for path in made:
+        make_reproducible(path)
         code, output = blender_ext_tool.run("validate", path)
         if code != 0:
             fail("Blender's validator rejects %s:\n%s" % (path, output))
@@ -380,6 +425,7 @@ def main():
         by_python = {}
         for path in args.wheels:
             python, platform, tag, wheel_version = wheel_facts(os.path.abspath(path), blender_ext)
+            check_wheel_module(os.path.abspath(path), python, platform)
             if wheel_version != version:
                 fail("%s is version %s, the add-on %s: rebuild it (bash scripts/build_wheel.sh)"
                      % (path, wheel_version, version))

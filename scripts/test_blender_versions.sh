@@ -10,7 +10,8 @@
 # made once per Python ABI in build-bpy-zips/cpXY; the extension installed by that Blender itself
 # (bpy.ops.extensions.package_install_files, which also installs the wheel) into a throw-away Blender
 # user folder; then the suite against that installed copy, run by the venv's Python after `import bpy`
-# (tests/blender/run_headless.py). Logs: build-bpy-logs/.
+# (tests/blender/run_headless.py); in the newest release also every snippet of docs/scripting.md and
+# docs/baking.md (tests/blender/doc_snippets.py). Logs: build-bpy-logs/.
 # Prints one line per release and a summary:
 #   blender 4.5.15 (Python 3.11.7, numpy 1.26.4): N passed, 0 failed, K skipped
 #   blender versions: N passed, M failed
@@ -95,6 +96,7 @@ extension_zip() {
 
 passed=0
 failed=0
+newest="$(printf '%s\n' "${releases[@]}" | awk '{print $1}' | sort -V | tail -n1)"
 for line in "${releases[@]}"; do
   read -r release python_version numpy <<< "$line"
   is_wanted "$release" || continue
@@ -123,6 +125,15 @@ for line in "${releases[@]}"; do
   # Its last line: bpy 4.2 to 4.4 print "Unable to initialise audio" on import.
   summary="$("$venv/bin/python" tests/blender/release_line.py "$report" "$status" 2>> "$log" | tail -n1)"
   echo "$summary"
+  # In the newest release, every snippet of docs/scripting.md and docs/baking.md, against the installed
+  # extension (once: the snippets use nothing that differs between the 5.x releases the suite covers).
+  if [ "$release" = "$newest" ] && [ "$status" -eq 0 ]; then
+    snippets_log="$logs/$release-doc-snippets.log"
+    (cd tests/blender && "$venv/bin/python" doc_snippets.py "$zip") > "$snippets_log" 2>&1 || status=$?
+    snippets_line="$(grep '^doc snippets: ' "$snippets_log" | tail -n1)"
+    echo "  ${snippets_line:-doc snippets: no summary} (bpy $release; $snippets_log)"
+    [ -n "$snippets_line" ] || status=1
+  fi
   if [ "$status" -eq 0 ] && [[ "$summary" == *" 0 failed, "* ]]; then
     passed=$((passed + 1))
   else

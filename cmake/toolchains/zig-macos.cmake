@@ -16,3 +16,6 @@ set(CMAKE_C_COMPILER ${GAUSS_ZIG_BIN}/${GAUSS_MACOS_ARCH}-macos-cc)
 set(CMAKE_CXX_COMPILER ${GAUSS_ZIG_BIN}/${GAUSS_MACOS_ARCH}-macos-c++)
 set(CMAKE_AR ${GAUSS_ZIG_BIN}/${GAUSS_MACOS_ARCH}-macos-ar CACHE FILEPATH "zig ar")
 set(CMAKE_RANLIB ${GAUSS_ZIG_BIN}/${GAUSS_MACOS_ARCH}-macos-ranlib CACHE FILEPATH "zig ranlib")
+# No strip: the host's binutils cannot read Mach-O, and stripping after zig's linker signed an arm64 file
+# would void its ad-hoc signature. pybind11 strips Release modules with CMAKE_STRIP, so it runs `true`.
+set(CMAKE_STRIP /bin/true CACHE FILEPATH "no strip for Mach-O (zig signs at link time)")

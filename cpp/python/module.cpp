@@ -12,6 +12,8 @@ PYBIND11_MODULE(gauss_core, m) {
   m.doc() = "Gauss stylization (Kohlbrenner et al. 2021): ARAP with preferred face normals.";
 
   gauss_python::export_facts(m);
+  // Which Python this binary is for, readable in the file itself (scripts/binary_facts.py).
+  m.attr("BUILT_FOR") = "gauss_core for CPython " GAUSS_PYTHON_VERSION;
   gauss_python::bind_direction_merge(m);
   gauss_python::bind_errors_and_progress(m);
   gauss_python::bind_threads(m);

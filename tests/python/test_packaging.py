@@ -3,8 +3,10 @@
 The extension zips are made from the real gauss_core wheel for this Python (scripts/build_wheel.sh) by
 Blender's own tooling and must pass Blender's own validator (blender_ext.py, scripts/blender_ext_tool.py).
 Only linux-x64 wheels can be built here; to check that --split-platforms gives each platform its own zip
-with only its own wheel, a copy of the Linux wheel is renamed to a Windows one (test data only: that
-zip is never installed anywhere).
+with only its own wheel, a Windows wheel is made from the Linux one with its module replaced by a
+minimal PE32+ DLL of the right Python (pe_module.py; test data only: that zip is never installed
+anywhere). The packager refuses a wheel whose module is not what its tag says: a Linux wheel merely
+renamed to a Windows or another Python's name.
 """
 import shutil
 import subprocess
@@ -15,6 +17,7 @@ import zipfile
 import pytest
 
 from conftest import BUILD, REPO
+from pe_module import pe_module
 from wheel_build import TAG, build_wheel
 
 sys.path.insert(0, str(REPO / "scripts"))
@@ -58,12 +61,67 @@ def packaged(tmp_path_factory):
     linux = wheels / wheel.name
     shutil.copy(wheel, linux)
     windows = wheels / wheel.name.replace("manylinux_2_28_x86_64", "win_amd64")
-    shutil.copy(wheel, windows)
+    windows_wheel(wheel, windows)
     out = tmp_path_factory.mktemp("zips")
     result = subprocess.run([sys.executable, str(SCRIPT), str(BUILD), str(out), "--wheels", str(linux), str(windows)],
                             capture_output=True, text=True)
     assert result.returncode == 0, result.stdout + result.stderr
     return out, result.stdout, {"linux-x64": linux.name, "windows-x64": windows.name}
+
+
+def windows_wheel(linux_wheel, path):
+    """A copy of the Linux wheel for Windows: the module a PE32+ DLL for this Python, named as CPython
+    names it there."""
+    with zipfile.ZipFile(linux_wheel) as source, zipfile.ZipFile(path, "w") as target:
+        for item in source.infolist():
+            if item.filename.startswith("gauss_core.cpython-"):
+                target.writestr(zipfile.ZipInfo("gauss_core.%s-win_amd64.pyd" % TAG, item.date_time), pe_module(PYTHON))
+            else:
+                target.writestr(item, source.read(item))
+
+
+def package(out, *wheels):
+    return subprocess.run([sys.executable, str(SCRIPT), str(BUILD), str(out), "--wheels", *map(str, wheels)],
+                          capture_output=True, text=True)
+
+
+def test_a_renamed_linux_wheel_is_refused(tmp_path):
+    wheel = build_wheel()
+    renamed = tmp_path / wheel.name.replace("manylinux_2_28_x86_64", "win_amd64")
+    shutil.copy(wheel, renamed)
+    result = package(tmp_path / "zips", renamed)
+    assert result.returncode != 0
+    message = result.stderr
+    assert "refusing %s" % renamed.name in message, message
+    assert "it is ELF64 x86_64, the tag win_amd64 needs PE32+ x86_64" in message, message
+    assert "its file name says another Python or system than the tag" in message, message
+    assert not (tmp_path / "zips").exists() or not list((tmp_path / "zips").glob("*extension*")), "no zip may be made"
+
+
+def test_a_wheel_of_another_python_is_refused(tmp_path):
+    wheel = build_wheel()
+    other = "cp313" if TAG != "cp313" else "cp311"
+    renamed = tmp_path / wheel.name.replace(TAG, other)
+    shutil.copy(wheel, renamed)
+    result = package(tmp_path / "zips", renamed)
+    assert result.returncode != 0
+    assert "refusing %s" % renamed.name in result.stderr, result.stderr
+    assert "it was built for Python %s, the tag %s needs %s.%s" % (PYTHON, other, other[2], other[3:]) in result.stderr, \
+        result.stderr
+
+
+def test_the_extension_zips_are_byte_identical_from_run_to_run(packaged, tmp_path):
+    out, _, wheels = packaged
+    again = tmp_path / "again"
+    linux = tmp_path / wheels["linux-x64"]
+    shutil.copy(build_wheel(), linux)
+    windows_wheel(linux, tmp_path / wheels["windows-x64"])
+    result = package(again, linux, tmp_path / wheels["windows-x64"])
+    assert result.returncode == 0, result.stdout + result.stderr
+    names = sorted(path.name for path in out.glob("*.zip"))
+    assert names == sorted(path.name for path in again.glob("*.zip")) and len(names) == 4, names
+    for name in names:
+        assert (out / name).read_bytes() == (again / name).read_bytes(), name
 
 
 def extension_zip(out, platform):

@@ -79,3 +79,18 @@ def test_no_row_claims_a_bpy_run_that_the_script_does_not_make():
         claims = re.sub(r"\(numpy [^)]*\)", "", row[3]) if row[3].startswith("suite run in bpy") else ""
         for claimed in re.findall(r"\b\d+\.\d+\.\d+\b", claims):
             assert claimed in tested, (claimed, row)
+
+
+def test_cross_built_claims_are_the_pythons_cross_check_builds():
+    # scripts/cross_check.sh builds the module for every Python an extension zip is made for; a row may
+    # claim "module cross-built and inspected (cpXY)" for those only, and each such row must claim it.
+    built = {"cp" + python.replace(".", "") for python in package_addon.BLENDER_FOR_PYTHON
+             if package_addon.blender_ranges(python, (0, 0))[1]}
+    script = (REPO / "scripts" / "cross_check.sh").read_text(encoding="utf-8")
+    assert "blender_ranges(v, (0, 0))[1]" in script  # the same rule picks the Pythons there
+    for row in readme_rows():
+        tag = re.search(r"-(cp\d+)-", row[2]).group(1)
+        for cell in row[4:6]:
+            claims = re.findall(r"module cross-built and inspected \((cp\d+)\)", cell)
+            assert all(claim == tag for claim in claims), (row, claims)
+            assert bool(claims) == (tag in built) or cell == "n/a", (row, built)

@@ -77,3 +77,13 @@ def test_cibuildwheel_reads_the_config_as_meant(platform, identifiers):
     expected = ["cp%s-%s" % (python.replace(".", ""), identifier)
                 for python in package_addon.BLENDER_FOR_PYTHON for identifier in identifiers]
     assert sorted(result.stdout.split()) == sorted(expected)
+
+
+def test_pypi_publishing_is_trusted_optional_and_on_tags_only():
+    text = WORKFLOW.read_text()
+    job = text[text.index("\n  pypi:\n"):]
+    assert "if: startsWith(github.ref, 'refs/tags/v') && vars.PUBLISH_TO_PYPI == 'true'" in job
+    assert "id-token: write" in job and "pypa/gh-action-pypi-publish@v" in job
+    assert "password" not in job and "secrets." not in job  # trusted publishing: no stored token
+    # It uploads the wheels the package job put in the extension zips, and only those.
+    assert "pattern: wheels-*" in job and "needs: [wheels, package]" in job
