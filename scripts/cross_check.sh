@@ -34,12 +34,16 @@
 # library's objects with the test trees.
 set -euo pipefail
 # --modules: only the Python modules (for a change to the bindings or the build of the module).
-only_modules=0
-case "${1:-}" in
-  --modules) only_modules=1 ;;
-  "") ;;
-  *) echo "usage: bash scripts/cross_check.sh [--modules]" >&2; exit 2 ;;
-esac
+# --newest-python: the modules for the newest extension Python only (CI's budget: the modules of each
+# Python differ only in CPython's headers; the full run builds every one).
+only_modules=0 newest_only=0
+for arg in "$@"; do
+  case "$arg" in
+    --modules) only_modules=1 ;;
+    --newest-python) newest_only=1 ;;
+    *) echo "usage: bash scripts/cross_check.sh [--modules] [--newest-python]" >&2; exit 2 ;;
+  esac
+done
 cd "$(dirname "$0")/.."
 root="$PWD"
 cache="${XDG_CACHE_HOME:-$HOME/.cache}/gauss_stylization/cross"
@@ -214,6 +218,7 @@ fi  # the C++ tests
 pythons="$(cd "$root/scripts" && python3 -c 'import package_addon as p
 print(" ".join(v for v in p.BLENDER_FOR_PYTHON if p.blender_ranges(v, (0, 0))[1]))')" ||
   fail "cannot read the extension Pythons from scripts/package_addon.py"
+[ "$newest_only" = 0 ] || pythons="$(tr ' ' '\n' <<< "$pythons" | sort -V | tail -n1)"
 tools_venv="$(bash "$root/scripts/install_deps.sh" --print-tools-venv | tail -n1)" || fail "scripts/install_deps.sh"
 pybind11_dir="$("$tools_venv/bin/python" -m pybind11 --cmakedir)" || fail "no pybind11 in $tools_venv"
 # build_module PLATFORM PYTHON SUFFIX CPYTHON_TARGET TOOLCHAIN_ARGS...: configure (once) and build gauss_core.
