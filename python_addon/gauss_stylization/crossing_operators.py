@@ -93,7 +93,7 @@ def _held_problem(context):
         return "Only while Stylize runs live on '%s'" % obj.name
     if not session.solver.held_vertices:
         return "Avoid Self-Intersections held no vertex back in the last step"
-    if not session.source.same_topology:
+    if not session.plan.source.same_topology:
         return "The modifiers change the faces of '%s': its own faces cannot be selected" % obj.name
     return None
 
