@@ -24,11 +24,11 @@ import sys
 import tempfile
 import traceback
 
-import addon_utils
-import bmesh
-import bpy
+import bpy  # first: Blender as a module puts its scripts' modules (addon_utils) on sys.path on import
+import addon_utils  # noqa: E402
+import bmesh  # noqa: E402
 
-from blender_process import exit_now
+from blender_process import exit_now  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DOCS = ("docs/scripting.md", "docs/baking.md")
