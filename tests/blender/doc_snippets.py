@@ -33,7 +33,14 @@ from blender_process import exit_now  # noqa: E402
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 DOCS = ("docs/scripting.md", "docs/baking.md")
 BLOCK = re.compile(r"^```(python|sh)\n(.*?)^```", re.M | re.S)
-NOT_HERE = "BLENDER_USER_CONFIG=$tmp/config"  # the classic install's snippet (see above)
+# Snippets run elsewhere, by what marks them: (marker, where they run instead).
+NOT_HERE = (
+    ("BLENDER_USER_CONFIG=$tmp/config", "the classic zip's install; package_addon.py --verify-install"),
+    ("/path/to/repo/build/addon", "the add-on of a build tree, not an installed one; tests/blender runs it so"),
+    ("bake/farm_cli.py -- ", "the farm command line; tests/blender/test_farm.py and tests/farm"),
+    ("farm/slurm/submit.sh", "a Slurm cluster; tests/farm/test_slurm.py"),
+    ("openjd run", "Open Job Description's runner; tests/farm/test_openjd.py"),
+)
 
 
 def snippets(path):
@@ -117,10 +124,13 @@ def main():
             make_scene(folder)
             for line, kind, code in snippets(doc):
                 where = "%s:%d (%s)" % (doc, line, kind)
-                if NOT_HERE in code:
-                    print("%s: not run here (the classic zip's install; package_addon.py --verify-install)" % where)
+                elsewhere = [why for marker, why in NOT_HERE if marker in code]
+                if elsewhere:
+                    print("%s: not run here (%s)" % (where, elsewhere[0]))
                     continue
                 try:
+                    if kind == "python" and '"Hero"' in code and "Hero" not in bpy.data.objects:
+                        bpy.ops.wm.open_mainfile(filepath=os.path.join(folder, "shot.blend"))  # the farm's shot
                     if kind == "python":
                         exec(compile(code, where, "exec"), namespace)
                     else:
