@@ -86,4 +86,18 @@ inline gauss::TriangleMesh beside(const gauss::TriangleMesh& a, const gauss::Tri
 
 inline std::string shared_mesh(const std::string& rel) { return std::string(GAUSS_MESH_DIR) + "/" + rel; }
 
+// A mesh's faces and a flat #V*3 coordinate array in the forms the collision code takes.
+inline std::vector<std::array<int, 3>> faces_of(const gauss::TriangleMesh& m) {
+  std::vector<std::array<int, 3>> f;
+  for (int i = 0; i < m.num_faces(); ++i)
+    f.push_back({static_cast<int>(m.F[3 * i]), static_cast<int>(m.F[3 * i + 1]), static_cast<int>(m.F[3 * i + 2])});
+  return f;
+}
+
+inline std::vector<Eigen::Vector3d> points_of(const std::vector<double>& flat) {
+  std::vector<Eigen::Vector3d> p(flat.size() / 3);
+  for (size_t v = 0; v < p.size(); ++v) p[v] = Eigen::Vector3d(flat[3 * v], flat[3 * v + 1], flat[3 * v + 2]);
+  return p;
+}
+
 }  // namespace gauss_test

@@ -14,21 +14,10 @@
 
 using Eigen::Vector3d;
 using gauss::GaussSolver;
+using gauss_test::faces_of;
+using gauss_test::points_of;
 
 namespace {
-
-std::vector<std::array<int, 3>> faces_of(const gauss::TriangleMesh& m) {
-  std::vector<std::array<int, 3>> f;
-  for (int i = 0; i < m.num_faces(); ++i)
-    f.push_back({static_cast<int>(m.F[3 * i]), static_cast<int>(m.F[3 * i + 1]), static_cast<int>(m.F[3 * i + 2])});
-  return f;
-}
-
-std::vector<Vector3d> points_of(const std::vector<double>& flat) {
-  std::vector<Vector3d> p(flat.size() / 3);
-  for (size_t v = 0; v < p.size(); ++v) p[v] = Vector3d(flat[3 * v], flat[3 * v + 1], flat[3 * v + 2]);
-  return p;
-}
 
 int64_t crossings(const gauss::TriangleMesh& m, const std::vector<double>& V) {
   return gauss::count_self_intersections(faces_of(m), points_of(V));
