@@ -1,5 +1,6 @@
 // gauss_bench MESH [--method gauss|cubic] [--style NAME] [--lambda L] [--sigma S] [--mu M] [--steps N]
 //             [--admm N] [--until TOL] [--acceleration on|off] [--avoid-self-intersections]
+//             [--resolution-independent]
 //             [--threads N] [--out OUT.obj]   (defaults: the solver's, printed by usage())
 // Times set-up and steps of the solver on one mesh and reports how far the style took hold.
 // --lambda is the lambda of the chosen method (settings::lambda or settings::cubic_lambda); the cubic
@@ -10,7 +11,8 @@
 // turns the solver's guard on (self_intersection.h). Every run prints intersecting_pairs: BEFORE ->
 // AFTER, the pairs of faces that cross in the input and in the result (each pair once; Blender's
 // BVHTree.overlap lists each twice), and step_held_vertices_max, the most vertices the guard held back
-// in one step.
+// in one step. --resolution-independent weights each face's preference by its area
+// (settings::resolution_independent, docs/resolution.md).
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -46,7 +48,8 @@ int usage() {
   std::fprintf(stderr,
                "usage: gauss_bench MESH [--method %s] [--style %s] [--lambda %g (cubic: %g)] [--sigma %g] [--mu %g]\n"
                "                   [--steps %d] [--admm %d] [--until TOL (e.g. %g; then --steps is the cap, default %d)]\n"
-               "                   [--acceleration %s] [--avoid-self-intersections] [--threads N] [--out OUT.obj]\n",
+               "                   [--acceleration %s] [--avoid-self-intersections] [--resolution-independent]\n"
+               "                   [--threads N] [--out OUT.obj]\n",
                settings::default_method, settings::default_preset, settings::lambda.default_value,
                settings::cubic_lambda.default_value, settings::sigma.default_value, settings::mu.default_value,
                kDefaultSteps, static_cast<int>(settings::admm_iterations.default_value),
@@ -68,10 +71,15 @@ int main(int argc, char** argv) {
   double until = 0;
   bool acceleration = settings::acceleration.default_value;
   bool avoid_self_intersections = settings::avoid_self_intersections.default_value;
+  bool resolution_independent = settings::resolution_independent.default_value;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--avoid-self-intersections") {  // a flag without a value
       avoid_self_intersections = true;
+      continue;
+    }
+    if (a == "--resolution-independent") {
+      resolution_independent = true;
       continue;
     }
     if (i + 1 >= argc) return usage();
@@ -119,6 +127,7 @@ int main(int argc, char** argv) {
     solver.set_method(method);
     solver.set_acceleration(acceleration);
     solver.set_avoid_self_intersections(avoid_self_intersections);
+    solver.set_resolution_independent(resolution_independent);
     const double setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
     if (until_converged) solver.set_tolerance(until);  // held_back() compares with it
@@ -190,6 +199,7 @@ int main(int argc, char** argv) {
       return p;
     };
     std::printf("avoid_self_intersections: %s\n", avoid_self_intersections ? "on" : "off");
+    std::printf("resolution_independent: %s\n", resolution_independent ? "on" : "off");
     std::printf("intersecting_pairs: %lld -> %lld\n",
                 static_cast<long long>(gauss::count_self_intersections(triangles, points(mesh.V))),
                 static_cast<long long>(gauss::count_self_intersections(triangles, points(result))));

@@ -117,7 +117,22 @@ inline constexpr Option avoid_self_intersections{
     "result never passes through itself where the input did not. Each step takes longer (how much: "
     "docs/performance.md, \"The guard's cost\")."};
 
-inline constexpr const Option* options[] = {&keep_volume, &acceleration, &avoid_self_intersections};
+// Off by default in the solver, which then steps bit for bit as the paper's method; the add-on turns it
+// on for new objects (docs/resolution.md).
+inline constexpr Option resolution_independent{
+    "resolution_independent", false,
+    "Stylize alike at any tessellation of a surface, for both methods: each face's preference is weighed by "
+    "its rest area, and a mesh finer than the reference density gets the bending stiffness ARAP has at the "
+    "reference, so lam (and cubic_lambda) mean the same on a coarse and a subdivided mesh "
+    "(docs/resolution.md). False: the paper's method, bit for bit."};
+
+inline constexpr const Option* options[] = {&keep_volume, &acceleration, &avoid_self_intersections,
+                                            &resolution_independent};
+
+// The face area (solver frame: longest bounding-box side 1) at which Resolution Independent changes
+// nothing; finer meshes are stylized as a mesh of this density is. Why this value:
+// docs/resolution.md#the-reference-density.
+inline constexpr double reference_face_area = 6e-4;
 
 // The acceleration's parameters per method (fixed_point_iteration.h): the momentum factor beta; for how
 // many steps a vertex whose step turned against its momentum goes without it, so that flapping sliver
@@ -193,7 +208,9 @@ constexpr auto solver_settings() {
                          row(keep_volume, &Solver::keep_volume, &Solver::set_keep_volume),
                          row(acceleration, &Solver::acceleration, &Solver::set_acceleration),
                          row(avoid_self_intersections, &Solver::avoid_self_intersections,
-                             &Solver::set_avoid_self_intersections));
+                             &Solver::set_avoid_self_intersections),
+                         row(resolution_independent, &Solver::resolution_independent,
+                             &Solver::set_resolution_independent));
 }
 
 // Every scalar read-out of the solver (arrays, dicts and methods are bound by hand in cpp/python/).

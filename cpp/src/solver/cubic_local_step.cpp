@@ -145,7 +145,8 @@ void CubicLocalStep::covariances(const MeshTopology& topo, const std::vector<Vec
 }
 
 void CubicLocalStep::fit(const MeshTopology& topo, const std::vector<Matrix3d>& face_cov, double lambda,
-                         bool extrapolated, std::vector<Matrix3d>& rotation, std::vector<Eigen::Quaterniond>& rotation_q) {
+                         bool extrapolated, std::vector<Matrix3d>& rotation, std::vector<Eigen::Quaterniond>& rotation_q,
+                         const Matrix3d* prior) {
   using namespace cubic_admm;
   const double sqrt6_abs = std::sqrt(6.0) * kAbsTol, sqrt3_abs = std::sqrt(3.0) * kAbsTol;
   const int nV = topo.num_vertices;
@@ -176,6 +177,7 @@ void CubicLocalStep::fit(const MeshTopology& topo, const std::vector<Matrix3d>& 
       a.v = v;
       a.M = face_cov[topo.vertex_corners[begin] / 3];
       for (int i = begin + 1; i < end; ++i) a.M += face_cov[topo.vertex_corners[i] / 3];
+      if (prior) a.M += prior[v];
       a.w = lambda * weight_[v];
       a.admm = a.w > 0;
       a.fitting = true;

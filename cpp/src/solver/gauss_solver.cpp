@@ -25,10 +25,15 @@ using Clock = std::chrono::steady_clock;
 
 // Memory the solver keeps per face (topology, rest quantities, ADMM buffers, edges) and per vertex,
 // rounded down from its members' sizes, for the early memory check. Per face, counting 1.5 edges a
-// face: topology 73 bytes, rest quantities 132, styles 12, step buffers 164 (381 in all); per vertex:
+// face: topology 73 bytes, rest quantities 148, styles 12, step buffers 164 (397 in all); per vertex:
 // numbering and topology 12, positions 72, rotations 104, the iteration's 81, the constrained
 // system's 56 (325; the factor is checked on its own).
 constexpr int64_t kSetupBytesPerFace = 360, kSetupBytesPerVertex = 320;
+
+// Bending stiffness per unit area and squared curvature, of ARAP (per unit face area: kArapBending a
+// kappa^2) and of the term sum_ij w_ij |R_i - R_j|^2 (kSmoothBending kappa^2), from a triangle lattice
+// bent into a cylinder (docs/resolution.md#bending).
+constexpr double kArapBending = 0.63, kSmoothBending = 2.0;
 
 double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
@@ -130,10 +135,12 @@ void GaussSolver::compute_rest_quantities() {
   slot_weight_.resize(nF);
   slot_rest_.resize(nF);
   edge_weight_.assign(topo_.edges.size(), 0.0);
+  face_area_.resize(nF);
   for (int f = 0; f < nF; ++f) {
     const auto& t = topo_.faces[f];
     Vector3d e[3];
     for (int k = 0; k < 3; ++k) e[k] = rest_[t[(k + 1) % 3]] - rest_[t[k]];
+    face_area_[f] = 0.5 * e[0].cross(e[1]).norm();
     const TriangleWeights tw = cotangent_weights(e);
     for (int k = 0; k < 3; ++k) {
       const double w = tw.w[k];
@@ -145,6 +152,37 @@ void GaussSolver::compute_rest_quantities() {
   slot_edge_weight_.resize(nF);
   for (int f = 0; f < nF; ++f)
     for (int k = 0; k < 3; ++k) slot_edge_weight_[f][k] = edge_weight_[topo_.face_edge[f][k]];
+  update_face_coupling();
+}
+
+void GaussSolver::update_face_coupling() {
+  const int nF = static_cast<int>(topo_.faces.size());
+  face_coupling_.assign(nF, 1.0);
+  if (!resolution_independent_) {
+    bending_weight_ = {};
+    rotation_prior_ = {};
+    return;
+  }
+  const double a_ref = settings::reference_face_area;
+  // A face of zero rest area gets the coupling of one a 1e6th of the reference's: it stays put, as
+  // such faces should, and the factor stays finite.
+  constexpr double kMinAreaRatio = 1e-6;
+  for (int f = 0; f < nF; ++f) face_coupling_[f] = a_ref / std::max(face_area_[f], kMinAreaRatio * a_ref);
+  // The bending term's beta at each vertex tops ARAP's own bending stiffness (kArapBending a kappa^2 per
+  // unit area, a the local face area) up to the reference's: beta = kArapBending / kSmoothBending *
+  // (a_ref - a), none where the mesh is coarser than the reference (docs/resolution.md).
+  std::vector<double> area(topo_.num_vertices, 0.0), beta(topo_.num_vertices, 0.0);
+  std::vector<int> count(topo_.num_vertices, 0);
+  for (int f = 0; f < nF; ++f)
+    for (int v : topo_.faces[f]) area[v] += face_area_[f], ++count[v];
+  for (int v = 0; v < topo_.num_vertices; ++v)
+    if (count[v] > 0) beta[v] = kArapBending / kSmoothBending * std::max(0.0, a_ref - area[v] / count[v]);
+  bending_weight_.resize(nF);
+  for (int f = 0; f < nF; ++f) {
+    const auto& t = topo_.faces[f];
+    for (int k = 0; k < 3; ++k)  // negative cotangent weights would reward bending: left out
+      bending_weight_[f][k] = 0.5 * (beta[t[k]] + beta[t[(k + 1) % 3]]) * std::max(0.0, slot_weight_[f][k]);
+  }
 }
 
 void GaussSolver::face_pass() {
@@ -166,8 +204,9 @@ void GaussSolver::face_pass() {
     dual_[f] = {0, 0, 0};
     if (face_mu_[f] > 0.0) {
       // The sign of e*_ij does not matter while u = 0 (both terms are even in e*).
-      const double lw[3] = {lam * slot_edge_weight_[f][0], lam * slot_edge_weight_[f][1],
-                            lam * slot_edge_weight_[f][2]};
+      const double lam_f = lam * face_coupling_[f];  // == lam when resolution_independent is off
+      const double lw[3] = {lam_f * slot_edge_weight_[f][0], lam_f * slot_edge_weight_[f][1],
+                            lam_f * slot_edge_weight_[f][2]};
       normal_star_[f] = normal_update(s, c / len, e, lw, zero);
     }
     Matrix3d cov = e[0] * slot_rest_[f][0].transpose();
@@ -187,13 +226,38 @@ Vector3d GaussSolver::normal_update(int s, const Vector3d& n, const Vector3d* es
 
 void GaussSolver::fit_rotations() {
   const int nV = topo_.num_vertices;
+  const Matrix3d* prior = rotation_prior();
   parallel::for_each(nV, parallel::kMinParallelItems, [&](int v) {
     const int begin = topo_.vertex_corner_start[v], end = topo_.vertex_corner_start[v + 1];
     if (begin == end) return;
     Matrix3d M = Matrix3d::Zero();
     for (int i = begin; i < end; ++i) M += face_scratch_[topo_.vertex_corners[i] / 3];
+    if (prior) M += prior[v];
     rotation_[v] = closest_rotation_warm(M, rotation_q_[v]);
   });
+}
+
+const Matrix3d* GaussSolver::rotation_prior() {
+  if (!resolution_independent_) return nullptr;
+  // The bending term beta sum_ij w_ij |R_i - R_j|^2 (docs/resolution.md) adds beta w_ij R_j to vertex i's
+  // rotation fit; R_j from the previous step, so that every vertex fits at once. The cubic method's
+  // covariance weights each half-edge by the whole edge weight, twice ARAP's spokes and rims, and so
+  // bends twice as stiffly: its term is doubled to match.
+  const double factor = method_ == Method::cubic ? 2.0 : 1.0;
+  const int nV = topo_.num_vertices;
+  rotation_prior_.resize(nV);
+  parallel::for_each(nV, parallel::kMinParallelItems, [&](int v) {
+    Matrix3d P = Matrix3d::Zero();
+    for (int i = topo_.vertex_corner_start[v]; i < topo_.vertex_corner_start[v + 1]; ++i) {
+      const int c = topo_.vertex_corners[i], f = c / 3, k = c % 3;
+      const auto& t = topo_.faces[f];
+      // Corner k heads slot k (to corner k+1) and ends slot k+2 (from corner k+2).
+      P += (factor * bending_weight_[f][k]) * rotation_[t[(k + 1) % 3]];
+      P += (factor * bending_weight_[f][(k + 2) % 3]) * rotation_[t[(k + 2) % 3]];
+    }
+    rotation_prior_[v] = P;
+  });
+  return rotation_prior_.data();
 }
 
 void GaussSolver::admm_round(bool first_round) {
@@ -208,8 +272,9 @@ void GaussSolver::admm_round(bool first_round) {
       const auto& fe = topo_.face_edge[f];
       const Vector3d es[3] = {edge_star_[fe[0]], edge_star_[fe[1]], edge_star_[fe[2]]};
       for (int k = 0; k < 3; ++k) dual_[f][k] += es[k].dot(n);
-      const double lw[3] = {lam * slot_edge_weight_[f][0], lam * slot_edge_weight_[f][1],
-                            lam * slot_edge_weight_[f][2]};
+      const double lam_f = lam * face_coupling_[f];
+      const double lw[3] = {lam_f * slot_edge_weight_[f][0], lam_f * slot_edge_weight_[f][1],
+                            lam_f * slot_edge_weight_[f][2]};
       normal_star_[f] = normal_update(face_style_[f], n, es, lw, dual_[f].data());
     });
   }
@@ -312,7 +377,8 @@ void GaussSolver::local_global_step() {
     // One flag for all vertices: the cubic momentum holds no vertex back, so every vertex's state
     // was extrapolated (or none was).
     static_assert(settings::cubic_momentum.hold == 0, "fit() would need to know which vertices were held");
-    cubic_.fit(topo_, face_scratch_, cubic_lambda_, iteration_.extrapolated(), rotation_, rotation_q_);
+    cubic_.fit(topo_, face_scratch_, cubic_lambda_, iteration_.extrapolated(), rotation_, rotation_q_,
+               rotation_prior());
   }
   timings_.admm = ms_since(t0);
   t0 = Clock::now();
@@ -369,6 +435,7 @@ void GaussSolver::reset() {
   X_ = rest_;
   // The rotation warm start is state too: a reset run must repeat the first run bit for bit.
   std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
+  std::fill(rotation_.begin(), rotation_.end(), Matrix3d::Identity());  // the bending term reads the last step's
   if (cubic_ready_) cubic_.reset();
   laplacian_.place_pins(X_);
   if (guard_) guard_->start_from(X_);

@@ -34,6 +34,13 @@ void GaussSolver::set_keep_volume(bool on) {
   iteration_.invalidate();
 }
 
+void GaussSolver::set_resolution_independent(bool on) {
+  if (on == resolution_independent_) return;
+  resolution_independent_ = on;
+  update_face_coupling();
+  iteration_.invalidate();
+}
+
 void GaussSolver::set_method(Method method) {
   if (method != Method::gauss && method != Method::cubic) throw std::invalid_argument("unknown stylization method");
   if (method == Method::cubic && !cubic_ready_) {
@@ -192,6 +199,7 @@ void GaussSolver::set_vertices(const double* V, int count) {
   laplacian_.place_pins(X_);
   if (guard_) guard_->start_from(X_);  // the caller's vertices are the new start, contacts and all
   std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
+  std::fill(rotation_.begin(), rotation_.end(), Eigen::Matrix3d::Identity());  // the bending term reads the last step's
   if (cubic_ready_) cubic_.reset();  // the cubic method's ADMM warm start, as reset() clears it
   iteration_.invalidate();
 }

@@ -95,8 +95,10 @@ class CubicLocalStep {
   // measure that move).
   void covariances(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& X,
                    std::vector<Eigen::Matrix3d>& face_cov) const;
+  // prior (optional): #V matrices added to each vertex's covariance (a bending term's pull).
   void fit(const MeshTopology& topo, const std::vector<Eigen::Matrix3d>& face_cov, double lambda, bool extrapolated,
-           std::vector<Eigen::Matrix3d>& rotation, std::vector<Eigen::Quaterniond>& rotation_q);
+           std::vector<Eigen::Matrix3d>& rotation, std::vector<Eigen::Quaterniond>& rotation_q,
+           const Eigen::Matrix3d* prior = nullptr);
 
   // The ADMM state a step carries to the next, #V by 2: [2i] z_i, [2i+1] rho_i u_i (the unscaled
   // dual, which a change of rho leaves alone). The solver's iteration extrapolates it together with

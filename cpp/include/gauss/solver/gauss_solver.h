@@ -116,6 +116,14 @@ class GaussSolver {
   // switched on, and after reset() or set_vertices()); vertices that would are held back short of it.
   // Switching it on allocates the guard (std::bad_alloc or OutOfMemory like the set-up).
   void set_avoid_self_intersections(bool on);
+  // Resolution Independent (settings::resolution_independent, docs/resolution.md): each face's preference
+  // weighed by its rest area (the normal step's coupling lambda w_ij scaled by
+  // settings::reference_face_area / the face's area), and a bending term on the rotations that gives
+  // a mesh finer than the reference the bending stiffness ARAP has at the reference, for both methods.
+  // So lambda means the same at any tessellation finer than the reference. Off: the paper's method,
+  // bit for bit.
+  void set_resolution_independent(bool on);
+  bool resolution_independent() const { return resolution_independent_; }
   bool avoid_self_intersections() const { return guard_ != nullptr; }
   // Vertices the guard held back in the last step or pin move (0 when it is off).
   int held_vertices() const { return guard_ ? guard_->last_held() : 0; }
@@ -184,6 +192,7 @@ class GaussSolver {
 
  private:
   void compute_rest_quantities();
+  void update_face_coupling();  // face_coupling_ from face_area_ and resolution_independent_
   // set_pins' work inside a set-up that `progress` already reports (the constructor's or set_pins').
   // Moves the pinned vertices to their targets; with the guard on, short of new contacts.
   void place_pins_guarded();
@@ -192,6 +201,9 @@ class GaussSolver {
   void local_global_step();
   void face_pass();
   void fit_rotations();  // rotation_ from the covariances in face_scratch_
+  // With resolution_independent: per vertex, the bending term's sum_j beta_ij w_ij R_j (R of the last
+  // step), which the rotation fits add to their covariance; nullptr when off.
+  const Eigen::Matrix3d* rotation_prior();
   void admm_round(bool first_round);
   // Eq. 27's right-hand side from rotation_; with_edges adds the Gauss method's lambda w e* terms.
   void assemble_rhs(bool with_edges);
@@ -229,6 +241,10 @@ class GaussSolver {
   std::vector<std::array<Eigen::Vector3d, 3>> slot_rest_;  // #F by 3: weight * rest edge vector
   std::vector<double> edge_weight_;                  // #E: sum of the slot weights of the edge
   std::vector<std::array<double, 3>> slot_edge_weight_;  // #F by 3: edge_weight_ of each slot (locality)
+  std::vector<double> face_area_;                   // #F: rest area
+  std::vector<double> face_coupling_;               // #F: factor of lambda in the normal step (1 when off)
+  std::vector<std::array<double, 3>> bending_weight_;  // #F by 3 while resolution_independent: beta w+ per slot
+  std::vector<Eigen::Matrix3d> rotation_prior_;       // #V while resolution_independent: the bending term's pull
 
   // Styles.
   std::vector<PreferenceFunction> styles_;
@@ -262,6 +278,7 @@ class GaussSolver {
   int factorization_count_ = 0;
   VolumeKeeper volume_;                              // rest sizes of the components without a pin
   bool keep_volume_ = settings::keep_volume.default_value;
+  bool resolution_independent_ = settings::resolution_independent.default_value;
   std::unique_ptr<SelfIntersectionGuard> guard_;     // while avoid_self_intersections is on
   std::vector<Eigen::Vector3d> safe_;                // #V while it is on: X before the step
   double denied_reldv_ = 0;                          // the last step's move the guard took back, as reldV
