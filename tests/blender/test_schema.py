@@ -105,6 +105,7 @@ LIVE_CHANGES = {
     ("object", "keep_volume"): ({}, {}, True),
     # Suzanne's eyes touch her head: at lambda 20 the guard holds them back.
     ("object", "avoid_self_intersections"): ({}, dict(lam=20.0), True),
+    ("object", "resolution_independent"): ({}, {}, False),  # on for a new object
 }
 # Live settings that change what the solver says about the shape, not the shape: the value changed to.
 LIVE_READOUTS = {

@@ -70,13 +70,20 @@ class Field:
     shown:    owner -> bool; whether the panel shows the row (default: where it is relevant)
     update:   (owner, context) -> None, called by Blender after the property was changed (kinds
               that take it: Choice)
+    since:    the settings version (settings/versioning.py) whose rules brought today's default; objects
+              written under an earlier one read ``before`` where they never set the field, so an old
+              file keeps its result (object fields only)
+    before:   the default before ``since``
     """
 
     widget = "prop"  # plain layout.prop row
 
     def __init__(self, name, label, tooltip="", live=Live.NOTHING, panel=None, text=None, relevant=None,
-                 shown=None, update=None):
+                 shown=None, update=None, since=None, before=None):
+        if (since is None) != (before is None):
+            raise ValueError("%s: since and before go together" % name)
         self.name, self.label, self.tooltip = name, label, tooltip
+        self.since, self.before = since, before
         self.live, self.panel, self.text = live, panel, text
         self.relevant = relevant or _always
         self.shown = shown or self.relevant
@@ -159,17 +166,25 @@ class Int(_Number):
 
 class Bool(Field):
     """A checkbox. Where the solver owns the setting (its name is in native.facts().defaults), the
-    default comes from the solver and must not be given here; otherwise it must be."""
+    default comes from the solver and must not be given here; otherwise it must be.
+
+    new_objects (solver-owned only, with ``since``): the value new objects start with where it is not
+    the solver's default; objects written before ``since`` keep the solver's default (``before``)."""
     widget = "checkbox"  # its label beside it across the row, not in the split's narrow left column
 
-    def __init__(self, name, label, tooltip, default=None, **options):
-        super().__init__(name, label, tooltip, **options)
+    def __init__(self, name, label, tooltip, default=None, new_objects=None, since=None, **options):
         facts = native.facts()
         owned = name in facts.defaults
         if owned == (default is not None):
             raise ValueError("%s: %s" % (name, "the solver owns its default (settings.h)" if owned
                                          else "a setting the solver does not own needs a default"))
-        self.default = bool(facts.defaults[name] if owned else default)
+        if new_objects is not None and not (owned and since is not None):
+            raise ValueError("%s: new_objects is for a setting the solver owns, with since" % name)
+        solver_default = bool(facts.defaults[name]) if owned else None
+        if new_objects is not None:
+            options["before"] = solver_default
+        super().__init__(name, label, tooltip, since=since, **options)
+        self.default = bool(default if not owned else solver_default if new_objects is None else new_objects)
 
     def prop(self, _classes):
         return BoolProperty(name=self.label, description=self.tooltip, default=self.default)

@@ -6,6 +6,8 @@ does when a setting changes (run/session.py) and the panel rows (view/sidebar.py
 are all derived from these tables. Defaults and hard ranges of what the solver owns
 (lam, sigma, mu, axis_contribution, admm_iterations, cubic_lambda, tolerance; the default of
 keep_volume), the preset registry and the methods come from the solver (native.facts()), never from here.
+A field whose default changed says since which settings version and what it was before, which
+versioning.py writes out for objects of older files.
 
 A new setting is one line in its table (kinds: fields.py), plus its use in the
 solver call for slot fields (styles.make_style); see python_addon/README.md.
@@ -165,6 +167,10 @@ OBJECT = (
          "where a step would make faces cross or touch that did not at the start, their vertices are held "
          "back (for 3D printing and carving; each step takes longer: docs/performance.md, The guard's cost)",
          live=Live.SETTER, panel=Panel.SOLVER),
+    Bool("resolution_independent", "Resolution Independent", "Lambda means the same at any mesh density, so a "
+         "coarse and a fine mesh of the same shape are stylized alike (docs/resolution.md). Off: the paper's "
+         "method, where a finer mesh is stylized more strongly", new_objects=True, since=2, live=Live.SETTER,
+         panel=Panel.SOLVER),
     Bool("use_modifiers", "Use Modifiers", "Stylize the mesh as it is shown: modifiers, armature and shape "
          "keys at the current frame (otherwise the base mesh, under the modifiers)", default=False,
          panel=Panel.MAIN),
@@ -177,14 +183,13 @@ OBJECT = (
            'MESH', panel=Panel.MAIN),
     VertexGroup("pin_group", "Pin Group", "Vertices in this group (weight above %g) keep their position"
                 % PIN_THRESHOLD, live=Live.PINS, panel=Panel.MAIN),
-    # Files saved before Unstyled became the default keep First Style (settings/versioning.py).
     Choice("uncovered", "Uncovered Faces", "Where what the styles' Regions leave of a face goes when every "
            "style has a Region (a style without one takes it otherwise)",
            (('FIRST_SLOT', "First Style", "To the first style, whose own Region then is whole again: painting "
              "it changes nothing (the rule of files saved before Unstyled became the default)", 0),
             ('UNSTYLED', "Unstyled", "Nowhere: faces outside every Region only keep their shape, and a "
              "Region's weight below 1 stylizes less", 1)),
-           'UNSTYLED', live=Live.REGIONS, panel=Panel.STYLES, text="Other Faces"),
+           'UNSTYLED', live=Live.REGIONS, panel=Panel.STYLES, text="Other Faces", since=1, before='FIRST_SLOT'),
     Int("bake_steps", "Bake Steps", "Solver steps per frame of an animation bake (with Warm Start the "
         "first frame runs Script Steps, the others continue from the previous frame)",
         default=10, hard=(1, 100000), soft=(1, 200), panel=Panel.BAKE),

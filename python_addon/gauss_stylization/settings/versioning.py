@@ -6,21 +6,26 @@ written under (``settings_version``, hidden), and a file that loads brings its o
 as Blender's own versioning does: the old default is written out where it was in effect, and the
 enum numbers files hold never change.
 
-- 0: before the stamp. Other Faces defaulted to First Style.
-- 1: Other Faces defaults to Unstyled, so a Region on the only style paints it.
+The rules are the schema's (schema.OBJECT): a field whose default changed names the version that
+changed it (``since``) and the default before (``before``; fields.Field). Version 0 is before the stamp;
+VERSION is the latest ``since``. Objects written under an earlier version that never set such a field
+get its ``before`` value written out, so they keep their result.
 
-A file's objects are brought up to date when it loads (load_post); objects made, or given their
-first style, in this session are stamped when the file is saved (save_pre), since they already
-follow today's rules. An object appended from a file saved before the stamp, or in a file opened
-while the add-on was off, follows today's rules (set Other Faces by hand to get the old result).
+A file's objects are brought up to date when it loads (load_post); objects that got settings in this
+session are stamped when the file is saved (save_pre), since they already follow today's rules. An
+object appended from a file saved before the stamp, or in a file opened
+while the add-on was off, follows today's rules (set such a field by hand to get the old result).
 """
 
 import bpy
 from bpy.props import IntProperty
 
 from .. import app_handlers
+from . import schema
 
-VERSION = 1
+# Object fields whose default changed, oldest first.
+CHANGED = tuple(sorted((field for field in schema.OBJECT if field.since is not None), key=lambda f: f.since))
+VERSION = max(field.since for field in CHANGED)
 STAMP = "settings_version"
 
 
@@ -30,34 +35,34 @@ def stamp_property():
                        description="Version of the add-on's rules these settings were written under")
 
 
-def _has_slots(obj):
-    """Settings a file holds and the add-on may write: a local object's, with style slots (Other Faces
-    acts only through them). Asked without reading obj.gauss_stylization where it was never set, since
-    reading it would give every object of the file settings."""
-    return (obj.library is None and obj.is_property_set("gauss_stylization")
-            and len(obj.gauss_stylization.styles) > 0)
+def _has_settings(obj):
+    """Settings a file holds and the add-on may write: a local object's (one without a slot gets one
+    when stylized, with the settings it holds). Asked without reading obj.gauss_stylization where it
+    was never set, since reading it would give every object of the file settings."""
+    return obj.library is None and obj.is_property_set("gauss_stylization")
 
 
 def bring_up_to_date(settings):
     """Settings read from a file of an earlier version -> today's, keeping what they did."""
     if settings.settings_version >= VERSION:
         return
-    if settings.settings_version < 1 and not settings.is_property_set("uncovered"):
-        settings.uncovered = 'FIRST_SLOT'
+    for field in CHANGED:
+        if settings.settings_version < field.since and not settings.is_property_set(field.name):
+            setattr(settings, field.name, field.before)
     settings.settings_version = VERSION
 
 
 @bpy.app.handlers.persistent
 def _update_loaded_file(*_args):
     for obj in bpy.data.objects:
-        if _has_slots(obj):
+        if _has_settings(obj):
             bring_up_to_date(obj.gauss_stylization)
 
 
 @bpy.app.handlers.persistent
 def _stamp_before_save(*_args):
     for obj in bpy.data.objects:
-        if _has_slots(obj) and obj.gauss_stylization.settings_version < VERSION:
+        if _has_settings(obj) and obj.gauss_stylization.settings_version < VERSION:
             obj.gauss_stylization.settings_version = VERSION
 
 

@@ -1,0 +1,89 @@
+"""Resolution Independent: on for new objects, off for objects of files saved before it existed (their
+result is kept, settings/versioning.py), and passed to the solver (docs/resolution.md)."""
+
+import bpy
+import numpy as np
+
+import helpers
+
+FIELD = "resolution_independent"
+
+
+def test_new_objects_start_with_it_on_and_the_solver_gets_it(addon):
+    assert addon.native.facts().defaults[FIELD] is False  # the solver's default: the paper's method
+    obj = helpers.suzanne(levels=0)
+    helpers.add_slot(obj, 'CUBE')
+    assert obj.gauss_stylization.resolution_independent is True
+    for value in (True, False):
+        obj.gauss_stylization.resolution_independent = value
+        run = addon.run.session.Session(obj)
+        try:
+            assert run.solver.resolution_independent is value
+        finally:
+            run.cancel()
+
+
+def _save_as_version(addon, path, version):
+    """Write the file as the add-on at settings version ``version`` wrote it: the stamp ``version`` (0:
+    none), and the setting never set, as no earlier version knew it."""
+    versioning = addon.settings.versioning
+    for obj in bpy.data.objects:
+        settings = obj.gauss_stylization
+        settings.property_unset(FIELD)
+        if version:
+            settings.settings_version = version
+        else:
+            settings.property_unset(versioning.STAMP)
+    versioning.unregister_handlers()
+    try:
+        bpy.ops.wm.save_as_mainfile(filepath=path)
+    finally:
+        versioning.register_handlers()
+
+
+def test_objects_saved_before_the_setting_existed_open_with_it_off(addon, tmp_path):
+    assert addon.settings.versioning.VERSION == 2
+    for version in (0, 1):
+        helpers.clear_scene()
+        with_slot, without = helpers.suzanne(levels=0), helpers.uv_sphere(8, 4)
+        with_slot.name, without.name = "Slot", "NoSlot"
+        helpers.add_slot(with_slot, 'CUBE')
+        without.gauss_stylization.lam = 3.0  # settings, but no slot yet: Stylize adds one
+        path = str(tmp_path / ("v%d.blend" % version))
+        _save_as_version(addon, path, version)
+        helpers.clear_scene()
+        bpy.ops.wm.open_mainfile(filepath=path, load_ui=False)
+        for name in ("Slot", "NoSlot"):
+            settings = bpy.data.objects[name].gauss_stylization
+            assert settings.resolution_independent is False, (version, name)
+            assert settings.settings_version == addon.settings.versioning.VERSION
+        # An object made now, in that file, starts with it on.
+        fresh = helpers.uv_sphere(8, 4)
+        helpers.add_slot(fresh, 'CUBE')
+        assert fresh.gauss_stylization.resolution_independent is True
+
+
+def test_a_file_saved_now_keeps_each_object_s_value(addon, tmp_path):
+    on, off = helpers.suzanne(levels=0), helpers.uv_sphere(8, 4)
+    on.name, off.name = "On", "Off"
+    for obj in (on, off):
+        helpers.add_slot(obj, 'CUBE')
+    off.gauss_stylization.resolution_independent = False
+    path = str(tmp_path / "now.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=path)
+    helpers.clear_scene()
+    bpy.ops.wm.open_mainfile(filepath=path, load_ui=False)
+    assert bpy.data.objects["On"].gauss_stylization.resolution_independent is True
+    assert bpy.data.objects["Off"].gauss_stylization.resolution_independent is False
+
+
+def test_it_changes_the_result(addon):
+    results = {}
+    for value in (False, True):
+        obj = helpers.suzanne(levels=1)
+        helpers.add_slot(obj, 'CUBE')
+        bpy.context.view_layer.objects.active = obj
+        assert helpers.stylize(20, resolution_independent=value) == {'FINISHED'}
+        results[value] = helpers.coords(obj)
+        helpers.clear_scene()
+    assert np.abs(results[True] - results[False]).max() > 1e-4
