@@ -84,7 +84,8 @@ def test_warm_bake_continues_each_frame_from_the_previous_result(addon, tmp_path
     result = None
     for frame in range(1, 6):
         rest = rests[frame - 1]
-        solver = core.Solver(rest, triangles, lam=settings.lam, admm_iterations=settings.admm_iterations)
+        solver = core.Solver(rest, triangles, lam=settings.lam, admm_iterations=settings.admm_iterations,
+                             resolution_independent=settings.resolution_independent)
         if result is None:
             solver.step(settings.iterations)
         else:

@@ -273,7 +273,8 @@ def cubic_converges_accelerated(name):
     # The plain iteration from the same start, on the triangles the solver sees.
     core = addon().native.core()
     plain = core.Solver(original.reshape(-1, 3).astype(np.float64), helpers.triangles(obj)[0],
-                        method="cubic", acceleration=False)
+                        method="cubic", acceleration=False,
+                        resolution_independent=settings.resolution_independent)
     plain.cubic_lambda = settings.cubic_lambda
     plain.set_styles([core.Style.preset("cube")])
     plain_steps = plain.step_until(settings.tolerance, 2000)
