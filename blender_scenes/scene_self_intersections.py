@@ -52,8 +52,9 @@ def build():
     objects, labels = [], []
     for avoid, name in ((False, "Avoid off"), (True, "Avoid on")):
         copy = render_kit.color(scene_kit.duplicate(source, name), render_kit.STYLIZED_COLOR)
+        # The paper's strength (Resolution Independent off), at which the tail crosses the back.
         scene_kit.stylize(copy, [CUBE], lam=LAMBDA, iterations=STEPS,
-                          avoid_self_intersections=avoid)
+                          avoid_self_intersections=avoid, resolution_independent=False)
         pairs = show_crossings(copy)
         print("  %-10s %d crossing pairs" % (name, pairs))
         objects.append(copy)
