@@ -2,7 +2,7 @@
 """Does a run converge at a high sigma? Steps to reldV < --tol (or the cap), the share of faces within
 10 degrees of the style's normals, and the faces that flip: over the last --window steps, the share of
 faces whose nearest preferred normal changed to another and back (A -> B -> A) between steps
-(docs/limitations.md#analysis-high-sigma, docs/performance.md#high-sigma).
+(the table under *High sigma never converges* in docs/limitations.md).
 
 usage: measure_sigma.py MESH [MESH...] [--sigmas 4 8 12 20] [--style cube] [--lam 4] [--tol 1e-3]
                         [--cap 1500] [--window 20] [--resolution-independent] [--ramp STEPS]
