@@ -1,6 +1,6 @@
 // gauss_bench MESH [--method gauss|cubic] [--style NAME] [--lambda L] [--sigma S] [--mu M] [--steps N]
 //             [--admm N] [--until TOL] [--acceleration on|off] [--avoid-self-intersections]
-//             [--resolution-independent]
+//             [--resolution-independent [--reference-face-area A]]
 //             [--threads N] [--out OUT.obj]   (defaults: the solver's, printed by usage())
 // Times set-up and steps of the solver on one mesh and reports how far the style took hold.
 // --lambda is the lambda of the chosen method (settings::lambda or settings::cubic_lambda); the cubic
@@ -12,7 +12,8 @@
 // AFTER, the pairs of faces that cross in the input and in the result (each pair once; Blender's
 // BVHTree.overlap lists each twice), and step_held_vertices_max, the most vertices the guard held back
 // in one step. --resolution-independent weights each face's preference by its area
-// (settings::resolution_independent, docs/resolution.md).
+// (settings::resolution_independent, docs/resolution.md); --reference-face-area sets its reference
+// density (default settings::reference_face_area), to measure that choice.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -49,12 +50,13 @@ int usage() {
                "usage: gauss_bench MESH [--method %s] [--style %s] [--lambda %g (cubic: %g)] [--sigma %g] [--mu %g]\n"
                "                   [--steps %d] [--admm %d] [--until TOL (e.g. %g; then --steps is the cap, default %d)]\n"
                "                   [--acceleration %s] [--avoid-self-intersections] [--resolution-independent]\n"
+               "                   [--reference-face-area A (default %g)]\n"
                "                   [--threads N] [--out OUT.obj]\n",
                settings::default_method, settings::default_preset, settings::lambda.default_value,
                settings::cubic_lambda.default_value, settings::sigma.default_value, settings::mu.default_value,
                kDefaultSteps, static_cast<int>(settings::admm_iterations.default_value),
                settings::tolerance.default_value, kDefaultCap,
-               settings::acceleration.default_value ? "on" : "off");
+               settings::acceleration.default_value ? "on" : "off", settings::reference_face_area);
   return 2;
 }
 
@@ -72,6 +74,7 @@ int main(int argc, char** argv) {
   bool acceleration = settings::acceleration.default_value;
   bool avoid_self_intersections = settings::avoid_self_intersections.default_value;
   bool resolution_independent = settings::resolution_independent.default_value;
+  double reference_face_area = settings::reference_face_area;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--avoid-self-intersections") {  // a flag without a value
@@ -92,6 +95,7 @@ int main(int argc, char** argv) {
     else if (a == "--steps") steps = std::atoi(v);
     else if (a == "--admm") admm = std::atoi(v);
     else if (a == "--threads") threads = std::atoi(v);
+    else if (a == "--reference-face-area") reference_face_area = std::atof(v);
     else if (a == "--until") until_converged = true, until = std::atof(v);
     else if (a == "--acceleration" && (std::strcmp(v, "on") == 0 || std::strcmp(v, "off") == 0))
       acceleration = std::strcmp(v, "on") == 0;
@@ -128,6 +132,7 @@ int main(int argc, char** argv) {
     solver.set_acceleration(acceleration);
     solver.set_avoid_self_intersections(avoid_self_intersections);
     solver.set_resolution_independent(resolution_independent);
+    solver.set_reference_face_area(reference_face_area);
     const double setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
     if (until_converged) solver.set_tolerance(until);  // held_back() compares with it
@@ -199,7 +204,8 @@ int main(int argc, char** argv) {
       return p;
     };
     std::printf("avoid_self_intersections: %s\n", avoid_self_intersections ? "on" : "off");
-    std::printf("resolution_independent: %s\n", resolution_independent ? "on" : "off");
+    std::printf("resolution_independent: %s (reference face area %g)\n", resolution_independent ? "on" : "off",
+                reference_face_area);
     std::printf("intersecting_pairs: %lld -> %lld\n",
                 static_cast<long long>(gauss::count_self_intersections(triangles, points(mesh.V))),
                 static_cast<long long>(gauss::count_self_intersections(triangles, points(result))));

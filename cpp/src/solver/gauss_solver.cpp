@@ -163,7 +163,7 @@ void GaussSolver::update_face_coupling() {
     rotation_prior_ = {};
     return;
   }
-  const double a_ref = settings::reference_face_area;
+  const double a_ref = reference_face_area_;
   // A face of zero rest area gets the coupling of one a 1e6th of the reference's: it stays put, as
   // such faces should, and the factor stays finite.
   constexpr double kMinAreaRatio = 1e-6;

@@ -1,6 +1,7 @@
 // GaussSolver between steps: parameters, pins and the current vertices (styles: gauss_solver_styles.cpp).
 // Everything here takes effect at the next step; only set_pins() re-factors (see constrained_laplacian.h).
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <sstream>
 #include <stdexcept>
@@ -37,6 +38,14 @@ void GaussSolver::set_keep_volume(bool on) {
 void GaussSolver::set_resolution_independent(bool on) {
   if (on == resolution_independent_) return;
   resolution_independent_ = on;
+  update_face_coupling();
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_reference_face_area(double area) {
+  if (!(area > 0.0 && std::isfinite(area))) throw std::invalid_argument("reference face area must be positive");
+  if (area == reference_face_area_) return;
+  reference_face_area_ = area;
   update_face_coupling();
   iteration_.invalidate();
 }

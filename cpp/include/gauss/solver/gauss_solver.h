@@ -124,6 +124,11 @@ class GaussSolver {
   // bit for bit.
   void set_resolution_independent(bool on);
   bool resolution_independent() const { return resolution_independent_; }
+  // The face area (solver frame) at which Resolution Independent changes nothing; by default
+  // settings::reference_face_area. Changeable to measure the choice (gauss_bench --reference-face-area);
+  // throws std::invalid_argument unless positive and finite.
+  void set_reference_face_area(double area);
+  double reference_face_area() const { return reference_face_area_; }
   bool avoid_self_intersections() const { return guard_ != nullptr; }
   // Vertices the guard held back in the last step or pin move (0 when it is off).
   int held_vertices() const { return guard_ ? guard_->last_held() : 0; }
@@ -279,6 +284,7 @@ class GaussSolver {
   VolumeKeeper volume_;                              // rest sizes of the components without a pin
   bool keep_volume_ = settings::keep_volume.default_value;
   bool resolution_independent_ = settings::resolution_independent.default_value;
+  double reference_face_area_ = settings::reference_face_area;
   std::unique_ptr<SelfIntersectionGuard> guard_;     // while avoid_self_intersections is on
   std::vector<Eigen::Vector3d> safe_;                // #V while it is on: X before the step
   double denied_reldv_ = 0;                          // the last step's move the guard took back, as reldV
