@@ -116,6 +116,7 @@ def keep_and_undo(name, original, what):
 
 def live_run_on_spot(name, _prepared):
     obj = bpy.data.objects[name]
+    obj.gauss_stylization.resolution_independent = False  # the paper's strength, at which Spot crosses itself
     original = coords(obj)
     check("Spot does not cross itself before the run", crossing_pairs(obj) == 0)
     yield from type_into_field(LAMBDA_PATH, "20")
@@ -175,6 +176,7 @@ def crossing_faces_button(name, _prepared):
     obj = kit.activate(bpy.data.objects[name])
     original = coords(obj)
     obj.gauss_stylization.avoid_self_intersections = False
+    obj.gauss_stylization.resolution_independent = False  # the paper's strength, at which Spot crosses itself
     obj.gauss_stylization.lam = 20.0
     with kit.override():
         bpy.ops.object.gauss_stylize(iterations=0)
