@@ -53,15 +53,24 @@ def test_a_region_on_the_only_slot_paints_it(addon):
     assert not np.array_equal(_result(addon, obj), _unpainted_result(addon, obj))
 
 
+def _as_version_0_ran(obj):
+    """The settings a version-0 object ran with where it never set them (the old defaults)."""
+    obj.gauss_stylization.resolution_independent = False
+
+
 def test_a_file_saved_with_the_old_default_keeps_its_result(addon, tmp_path):
     obj = _half_painted_sphere()
+    _as_version_0_ran(obj)
     obj.gauss_stylization.uncovered = 'FIRST_SLOT'  # what the old default gave it
     old_result = _result(addon, obj)
     assert np.array_equal(old_result, _unpainted_result(addon, obj))  # the old rule: the paint did nothing
     obj.gauss_stylization.property_unset("uncovered")  # as the old version saved it: never set
     explicit = _half_painted_sphere("Chosen")
+    _as_version_0_ran(explicit)
     explicit.gauss_stylization.uncovered = 'UNSTYLED'  # set by hand in the old version: kept
     chosen_result = _result(addon, explicit)
+    for each in (obj, explicit):
+        each.gauss_stylization.property_unset("resolution_independent")  # a setting version 0 did not know
     path = str(tmp_path / "old.blend")
     _save_as_an_earlier_version_did(addon, path)
     helpers.clear_scene()
