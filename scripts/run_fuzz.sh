@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer harness (clang; ASan + UBSan + LSan) in a build folder of its own, replays every
+# Builds the libFuzzer harness (clang; ASan + UBSan + LSan) in a build folder of its own
+# (scripts/sanitizer_tree.sh), replays every
 # input that ever crashed it (tests/fuzz/regressions/) and the seed corpus (tests/fuzz/corpus/), then
 # fuzzes the solver for a bounded time on a temporary copy of the corpus. Exits non-zero on a crash, a
 # sanitizer report, a violated contract (NaN out, unreferenced vertex moved, unexpected exception...;
@@ -16,9 +17,8 @@ repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${2:-$repo/build-fuzz}"
 jobs="${GAUSS_JOBS:-2}"
 
-cmake -S "$repo" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DGAUSS_BUILD_FUZZER=ON -DGAUSS_SANITIZE=address,undefined \
-  -DGAUSS_BUILD_TESTS=OFF -DGAUSS_BUILD_PYTHON=OFF -DGAUSS_BUILD_BENCH=OFF
+source "$repo/scripts/sanitizer_tree.sh"
+configure_sanitizer_tree "$build" -DGAUSS_BUILD_FUZZER=ON -DGAUSS_BUILD_TESTS=OFF
 cmake --build "$build" --target fuzz_solver -j "$jobs"
 fuzzer="$build/tests/fuzz/fuzz_solver"
 
