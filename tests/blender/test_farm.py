@@ -59,6 +59,17 @@ def test_chunks_without_warm_start_merge_into_the_bytes_of_one_bake(addon, tmp_p
     assert (tmp_path / "merged.pc2").read_bytes() == one.read_bytes()
 
 
+def test_frames_as_flamenco_and_blender_write_them(addon, tmp_path):
+    """Flamenco's frameChunker writes a chunk of two frames as 'A,B' and Blender's own ranges are 'A..B':
+    a chunk given either way bakes its frames, and the merge takes them too."""
+    _shot(warm_start=False, frames=(1, 6))
+    one = _one_bake(tmp_path / "one.pc2")
+    for name, frames in (("a", "1..3"), ("b", "4,5"), ("c", "6")):
+        assert _cli(addon, "bake", "--object", "Capsule", "--frames", frames, "--out", tmp_path / (name + ".pc2")) == 0
+    assert _cli(addon, "merge", tmp_path / "?.pc2", "--frames", "1..6", "--out", tmp_path / "merged.pc2") == 0
+    assert (tmp_path / "merged.pc2").read_bytes() == one.read_bytes()
+
+
 def _relative_error(addon, chunk, one, first, size):
     frames = addon.pc2.read(str(chunk)).frames
     return np.abs(frames - addon.pc2.read(str(one)).frames[first - 1:first - 1 + len(frames)]).max() / size
@@ -87,6 +98,12 @@ def test_warm_start_chunks_warm_up_before_their_first_frame(addon, tmp_path, cap
     print("largest distance from the one bake / size, by warm-up frames:", errors)
     assert errors[0] > errors[2] > errors[8]
     assert errors[8] < WARM_TOLERANCE
+    # The shot in three chunks with the default Warm-up, merged: within the tolerance of the one bake.
+    assert _cli(addon, "bake", "--object", "Capsule", "--frames", "9-16", "--out", tmp_path / "c.pc2") == 0
+    merged = tmp_path / "merged.pc2"
+    assert _cli(addon, "merge", tmp_path / "a.pc2", tmp_path / "c.pc2", tmp_path / "b8.pc2", "--frames", "1-24",
+                "--out", merged) == 0
+    assert _relative_error(addon, merged, one, 1, size) < WARM_TOLERANCE
 
 
 def _farm_cli_script():
@@ -175,11 +192,35 @@ def test_the_script_runs_from_an_extension_install(addon, tmp_path):
     assert addon.pc2.read(str(tmp_path / "c.pc2")).frames.shape[0] == 3
 
 
+def test_the_command_form_opens_the_blend_file_it_is_given(addon, tmp_path, capsys):
+    """`blender --command gauss_bake` opens no file before calling main(): its --blend option does, before or
+    after the job's name, and a file that is not there or not a .blend is an error, not a traceback."""
+    _shot(warm_start=False, frames=(1, 3))
+    blend = tmp_path / "shot.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(blend))
+    one = _one_bake(tmp_path / "one.pc2")
+    junk = tmp_path / "junk.blend"
+    junk.write_bytes(b"BLENDER-v300 but nothing else")
+    bpy.ops.wm.read_homefile(use_empty=True)  # as a command starts: not the shot
+    assert _cli(addon, "bake", "--blend", blend, "--object", "Capsule", "--frames", "1-3", "--out", tmp_path / "a.pc2") == 0
+    assert _cli(addon, "--blend", blend, "bake", "--object", "Capsule", "--frames", "1-3", "--out", tmp_path / "b.pc2") == 0
+    assert (tmp_path / "a.pc2").read_bytes() == (tmp_path / "b.pc2").read_bytes() == one.read_bytes()
+    capsys.readouterr()
+    for path, message in ((tmp_path / "none.blend", "No .blend file"), (junk, "junk.blend")):
+        assert _cli(addon, "bake", "--blend", path, "--object", "Capsule", "--frames", "1-3",
+                    "--out", tmp_path / "c.pc2") == 1
+        err = capsys.readouterr().err
+        assert message in err and "Traceback" not in err, err
+    assert not (tmp_path / "c.pc2").exists()
+
+
 @pytest.mark.parametrize("args, message", [
     (["bake", "--object", "Nobody", "--frames", "1-3"], "No object 'Nobody'"),
     (["bake", "--object", "Rig", "--frames", "1-3"], "'Rig' is not a mesh object (its type is ARMATURE)"),
     (["bake", "--object", "Capsule", "--frames", "1to3"], "Frames must be A-B"),
     (["bake", "--object", "Capsule", "--frames", "5-1"], "The last frame (1) is before the first (5)"),
+    (["bake", "--object", "Capsule", "--frames", "1-3,7-9"], "Frames 1-3,7-9 are not one range"),
+    (["bake", "--object", "Capsule", "--frames", "1,,2"], "Frames must be A-B"),
     (["merge", "missing_*.pc2"], "No file matches"),
     (["merge", "part_1.pc2", "part_7.pc2"], "a gap"),
     (["merge", "part_1.pc2", "--frames", "1-9"], "The chunks hold frames 1-3, not 1-9"),

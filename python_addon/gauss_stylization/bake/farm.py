@@ -28,16 +28,31 @@ def say(text):
     print("%s: %s" % (PREFIX, text), flush=True)
 
 
+_RUN = re.compile(r"\s*(-?\d+)\s*(?:(?:-|\.\.)\s*(-?\d+)\s*)?")
+
+
 def parse_frames(text):
-    """'A-B' (or 'A' alone) -> (A, B); frames may be negative ('-10--1')."""
-    match = re.fullmatch(r"\s*(-?\d+)\s*(?:-\s*(-?\d+)\s*)?", text)
-    if match is None:
-        raise SettingsError("Frames must be A-B (e.g. 1-48), got '%s'" % text)
-    first = int(match.group(1))
-    last = int(match.group(2)) if match.group(2) is not None else first
-    if last < first:
-        raise SettingsError("The last frame (%d) is before the first (%d)" % (last, first))
-    return first, last
+    """One range of frames -> (A, B): 'A-B', 'A..B' (Blender's way), 'A', or a comma list of these that
+    joins into one range without gaps ('47,48': how Flamenco's frameChunker writes a chunk of two
+    frames). Frames may be negative ('-10--1')."""
+    runs = []
+    for part in text.split(","):
+        match = _RUN.fullmatch(part)
+        if match is None:
+            raise SettingsError("Frames must be A-B (e.g. 1-48), got '%s'" % text)
+        first = int(match.group(1))
+        last = int(match.group(2)) if match.group(2) is not None else first
+        if last < first:
+            raise SettingsError("The last frame (%d) is before the first (%d)" % (last, first))
+        runs.append((first, last))
+    runs.sort()
+    end = runs[0][1]
+    for first, last in runs[1:]:
+        if first > end + 1:
+            raise SettingsError("Frames %s are not one range: frame %d is missing (a chunk bakes frames "
+                                "without gaps)" % (text, end + 1))
+        end = max(end, last)
+    return runs[0][0], end
 
 
 def mesh_object(name):
