@@ -46,6 +46,10 @@ def parse_frames(text):
             raise SettingsError("The last frame (%d) is before the first (%d)" % (last, first))
         runs.append((first, last))
     runs.sort()
+    # Blender clamps the scene's frame to its range: a frame beyond it would bake the last one again.
+    frame = bpy.types.Scene.bl_rna.properties["frame_current"]
+    if runs[0][0] < frame.hard_min or max(last for _first, last in runs) > frame.hard_max:
+        raise SettingsError("Blender's frames are %d to %d, got '%s'" % (frame.hard_min, frame.hard_max, text))
     end = runs[0][1]
     for first, last in runs[1:]:
         if first > end + 1:
@@ -131,6 +135,11 @@ def expand(patterns):
 def merge_chunks(patterns, out, frames=None):
     """Merge the chunks into ``out``; frames: (first, last) the chunks must cover exactly, or None."""
     paths = expand(patterns)
+    for path in paths:
+        if os.path.isdir(path):
+            raise SettingsError("'%s' is a folder, not a .pc2 chunk" % path)
+    if os.path.isdir(out):
+        raise SettingsError("The output '%s' is a folder; give a file name" % out)
     try:
         if frames is not None:
             heads = [pc2.header(path) for path in paths]
