@@ -277,16 +277,20 @@ def test_a_batch_stylizes_each_file_and_skips_the_bad_ones(addon, tmp_path, caps
     junk.write_text("this is no mesh\n")
     notes = tmp_path / "notes.txt"
     notes.write_text("not a mesh either\n")
-    inputs = [meshes[0], junk, blend, tmp_path / "missing.obj", notes, meshes[1], meshes[2]]
+    broken = tmp_path / "broken.blend"  # Blender cannot read it: the next file must still open
+    broken.write_bytes(b"BLENDER-v300" + bytes(range(256)) * 8)
+    inputs = [meshes[0], junk, broken, blend, tmp_path / "missing.obj", notes, meshes[1], meshes[2]]
     preset = _write_preset(tmp_path / "preset.json")
     out_dir = tmp_path / "out"
     assert _cli(addon, "batch", *inputs, "--preset", preset, "--out-dir", out_dir) == 3  # some skipped
     out = capsys.readouterr().out
-    skipped = re.findall(r"gauss_bake: file (\d)/7: SKIPPED (\S+): (.+)", out)
+    skipped = re.findall(r"gauss_bake: file (\d)/8: SKIPPED (\S+): (.+)", out)
     assert [(n, os.path.basename(p)) for n, p, _reason in skipped] == [
-        ("2", "junk.obj"), ("4", "missing.obj"), ("5", "notes.txt")], out
-    assert [reason for *_, reason in skipped] == ["no faces in it", "no such file", "not a .obj or .blend file"]
-    assert "gauss_bake: batch: 4 stylized, 3 skipped" in out
+        ("2", "junk.obj"), ("3", "broken.blend"), ("5", "missing.obj"), ("6", "notes.txt")], out
+    reasons = [reason for *_, reason in skipped]
+    assert reasons[:1] + reasons[2:] == ["no faces in it", "no such file", "not a .obj or .blend file"]
+    assert "broken.blend" in reasons[1] and "Traceback" not in out, reasons[1]  # Blender's own words
+    assert "gauss_bake: batch: 4 stylized, 4 skipped" in out
     assert sorted(os.listdir(out_dir)) == ["bunny_npm_1839_gauss.obj", "capsule_gauss.blend",
                                            "cat_head_131_gauss.obj", "spot_triangulated_2930_gauss.obj"]
     for mesh in meshes:  # one output per input: the same vertices, moved by the stylization
