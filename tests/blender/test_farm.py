@@ -202,8 +202,9 @@ def test_the_command_form_opens_the_blend_file_it_is_given(addon, tmp_path, caps
     junk = tmp_path / "junk.blend"
     junk.write_bytes(b"BLENDER-v300 but nothing else")
     bpy.ops.wm.read_homefile(use_empty=True)  # as a command starts: not the shot
-    assert _cli(addon, "bake", "--blend", blend, "--object", "Capsule", "--frames", "1-3", "--out", tmp_path / "a.pc2") == 0
-    assert _cli(addon, "--blend", blend, "bake", "--object", "Capsule", "--frames", "1-3", "--out", tmp_path / "b.pc2") == 0
+    job = ["--object", "Capsule", "--frames", "1-3", "--out"]
+    assert _cli(addon, "bake", "--blend", blend, *job, tmp_path / "a.pc2") == 0
+    assert _cli(addon, "--blend", blend, "bake", *job, tmp_path / "b.pc2") == 0
     assert (tmp_path / "a.pc2").read_bytes() == (tmp_path / "b.pc2").read_bytes() == one.read_bytes()
     capsys.readouterr()
     for path, message in ((tmp_path / "none.blend", "No .blend file"), (junk, "junk.blend")):

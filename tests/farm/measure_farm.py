@@ -1,6 +1,7 @@
 """Measures the farm jobs for docs/performance.md ("On a farm"):
 
-    /usr/bin/python3 tests/farm/measure_farm.py bake [--frames 240] [--chunks 4] [--mesh bunny/bun_zipper_35947.obj] [--no-slurm]
+    /usr/bin/python3 tests/farm/measure_farm.py bake [--frames 240] [--chunks 4] [--mesh bunny/bun_zipper_35947.obj]
+        [--no-slurm]
     /usr/bin/python3 tests/farm/measure_farm.py batch [--files 20]
 
 bake: a shot of the mesh bent by an armature (make_shot.py, Warm Start off) baked by one Blender process,
