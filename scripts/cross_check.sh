@@ -4,7 +4,7 @@
 #     Windows x64 with MinGW-w64, linked statically, and run under wine (all
 #     but the slow cases of tests/cpp/slow_tests.txt);
 #   - the same compiled and linked for macOS arm64 with zig (no Apple SDK; it cannot run here), for the
-#     release's minimum macOS (pyproject.toml's MACOSX_DEPLOYMENT_TARGET);
+#     release's minimum macOS (pyproject.toml's MACOSX_DEPLOYMENT_TARGET); not with --ci;
 #   - the Python module gauss_core, as it ships, for every Python an extension zip is made for (3.11,
 #     3.13: scripts/package_addon.py's BLENDER_FOR_PYTHON) on Windows x64, macOS arm64 and macOS x86_64,
 #     against that CPython's headers (and Windows import library) from scripts/cross_cpython.py, then
@@ -15,7 +15,7 @@
 #
 # Output (stdout), each line once its part succeeded:
 #   windows-x64 (mingw, wine): N passed, 0 failed, 0 skipped
-#   macos-arm64 (zig): built, minos 11.0
+#   macos-arm64 (zig): built, minos 11.0          (not with --ci)
 #   windows-x64 module (cp313): built, imports python313.dll KERNEL32.dll msvcrt.dll
 #   macos-arm64 module (cp313): built, minos 11.0, ad-hoc signed
 #   macos-x64 module (cp313): built, minos 11.0
@@ -34,14 +34,17 @@
 # library's objects with the test trees.
 set -euo pipefail
 # --modules: only the Python modules (for a change to the bindings or the build of the module).
-# --newest-python: the modules for the newest extension Python only (CI's budget: the modules of each
-# Python differ only in CPython's headers; the full run builds every one).
-only_modules=0 newest_only=0
+# --newest-python: the modules for the newest extension Python only (the modules of each Python differ
+# only in CPython's headers; the full run builds every one).
+# --ci: CI's budget: --newest-python, and no macOS test program (it cannot run here; what ships to macOS,
+# the modules, is built and inspected all the same, and the Windows test program still runs under wine).
+only_modules=0 newest_only=0 macos_tests=1
 for arg in "$@"; do
   case "$arg" in
     --modules) only_modules=1 ;;
     --newest-python) newest_only=1 ;;
-    *) echo "usage: bash scripts/cross_check.sh [--modules] [--newest-python]" >&2; exit 2 ;;
+    --ci) newest_only=1 macos_tests=0 ;;
+    *) echo "usage: bash scripts/cross_check.sh [--modules] [--newest-python] [--ci]" >&2; exit 2 ;;
   esac
 done
 cd "$(dirname "$0")/.."
@@ -145,6 +148,7 @@ build_platform windows-x64 "${windows_args[@]}" -DGAUSS_MESH_DIR:STRING="Z:$mesh
 # The test program for arm64 only: x86_64's compiler and linker are proven by its modules below, and a
 # second macOS build of the whole test suite cost CI minutes for no more than that.
 test_arches=(aarch64)
+[ "$macos_tests" = 1 ] || test_arches=()
 for arch in "${test_arches[@]}"; do
   build_platform "macos-$arch" "${macos_args[@]}" -DGAUSS_MACOS_ARCH="$arch"
 done

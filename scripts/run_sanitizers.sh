@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the C++ tests with AddressSanitizer + UndefinedBehaviorSanitizer (LeakSanitizer included) in a
-# build folder of their own and runs them through ctest with the solver on 2 threads. Exits non-zero on any
-# sanitizer report or test failure.
+# clang tree of their own (scripts/sanitizer_tree.sh) and runs them through ctest with the solver on 2
+# threads. Exits non-zero on any sanitizer report or test failure.
 #
 # usage: scripts/run_sanitizers.sh [BUILD_DIR]     (default: <repo>/build-asan; incremental)
 set -euo pipefail
@@ -10,8 +10,8 @@ repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$repo/build-asan}"
 jobs="${GAUSS_JOBS:-2}"
 
-cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGAUSS_SANITIZE=address,undefined \
-  -DGAUSS_BUILD_PYTHON=OFF -DGAUSS_BUILD_BENCH=OFF -DGAUSS_BUILD_TESTS=ON
+source "$repo/scripts/sanitizer_tree.sh"
+configure_sanitizer_tree "$build" -DGAUSS_BUILD_TESTS=ON
 cmake --build "$build" --target gauss_tests -j "$jobs"
 
 # Every report is fatal (the build adds -fno-sanitize-recover=all; ASan and LSan abort or exit non-zero

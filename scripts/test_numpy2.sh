@@ -2,11 +2,11 @@
 # The module's own pytest suite (tests/python) against numpy 2, with the gauss_core wheel installed the
 # way Blender's extension system installs it (a top-level module in site-packages).
 #
-#   bash scripts/test_numpy2.sh [PYTHON_EXE...]
+#   bash scripts/test_numpy2.sh [PYTHON_EXE... | --newest]
 #
 # Default Pythons: pyenv's 3.11.7 (Blender 4.2 to 5.0's Python; PyPI's bpy 4.2 to 4.4 let pip bring
-# numpy 2 beside it) and 3.13.0 (Blender 5.1 and later, which bundle numpy 2). For each, a venv
-# build-wheel-cpXY/numpy2-venv with numpy and pytest pinned in packaging/numpy2-test-requirements.txt
+# numpy 2 beside it) and 3.13.0 (Blender 5.1 and later, which bundle numpy 2); --newest: 3.13.0 only.
+# For each, a venv build-wheel-cpXY/numpy2-venv with numpy and pytest pinned in packaging/numpy2-test-requirements.txt
 # (remade when a pin changes), the wheel of scripts/build_wheel.sh installed into it, then pytest. The
 # packaging tests, which read the main build tree, run in the main suite only (scripts/run_tests.sh);
 # tests/python/test_numpy_mismatch.py runs here, where numpy 2 is.
@@ -16,8 +16,11 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 repo="$PWD"
+defaults=("$HOME/.pyenv/versions/3.11.7/bin/python3" "$HOME/.pyenv/versions/3.13.0/bin/python3")
 if [ $# -eq 0 ]; then
-  set -- "$HOME/.pyenv/versions/3.11.7/bin/python3" "$HOME/.pyenv/versions/3.13.0/bin/python3"
+  set -- "${defaults[@]}"
+elif [ "$1" = --newest ]; then
+  set -- "${defaults[-1]}"
 fi
 requirements="$repo/packaging/numpy2-test-requirements.txt"
 pins="$(grep -v '^\s*\(#\|$\)' "$requirements")"

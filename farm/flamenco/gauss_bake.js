@@ -27,6 +27,7 @@ const JOB_TYPE = {
 
 function compileJob(job) {
     const settings = job.settings;
+    checkOneRange(settings.frames);
     const chunkDir = settings.output + ".chunks";
     const bakeTasks = [];
     for (const chunk of frameChunker(settings.frames, settings.chunk_size)) {
@@ -56,6 +57,14 @@ function compileJob(job) {
         merge.addDependency(task);
     }
     job.addTask(merge);
+}
+
+// A bake's chunks must join into one cache without gaps, so refuse a frame list such as "1-10,20-30" when
+// the job is submitted, rather than let its tasks fail on the workers.
+function checkOneRange(frames) {
+    if (!/^\s*\d+\s*((-|\.\.)\s*\d+\s*)?$/.test(String(frames))) {
+        throw `Frames must be one range A-B (e.g. 1-240), got "${frames}"`;
+    }
 }
 
 // The farm command line after the .blend: an error in the script makes Blender exit non-zero, so the

@@ -91,16 +91,16 @@ def _held_problem(context):
     session = runs.session_of(obj)
     if session is None:
         return "Only while Stylize runs live on '%s'" % obj.name
-    if not session.solver.held_vertices:
-        return "Avoid Self-Intersections held no vertex back in the last step"
+    if not len(session.held_anywhere):
+        return "Avoid Self-Intersections has held no vertex back in this run"
     if not session.plan.source.same_topology:
         return "The modifiers change the faces of '%s': its own faces cannot be selected" % obj.name
     return None
 
 
 class OBJECT_OT_gauss_select_held(bpy.types.Operator):
-    """Select the faces where Avoid Self-Intersections holds the live run back (those around the
-    vertices it held in the last step); Edit Mode shows them once the run is kept"""
+    """Select the faces where Avoid Self-Intersections has held the live run back (those around every
+    vertex it held in some step of the run); Edit Mode shows them once the run is kept"""
     bl_idname = "object.gauss_select_held"
     bl_label = "Select Held Faces"
     bl_options = {'INTERNAL'}  # not registered: a live run counts registered operators as edits
@@ -112,11 +112,11 @@ class OBJECT_OT_gauss_select_held(bpy.types.Operator):
     def execute(self, context):
         obj = context.active_object
         session = runs.session_of(obj)
-        held = session.solver.held_vertex_indices
+        held = session.held_anywhere
         polygons = crossings.polygons_with_vertices(session.arrays, held)
         crossings.select_polygons(obj.data, polygons)
-        self.report({'INFO'}, "Avoid Self-Intersections holds %d vertices back; their %d faces are selected"
-                    % (len(held), len(polygons)))
+        self.report({'INFO'}, "Avoid Self-Intersections has held %d vertices back in this run; their %d faces "
+                    "are selected" % (len(held), len(polygons)))
         return {'FINISHED'}
 
 

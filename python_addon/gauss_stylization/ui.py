@@ -179,7 +179,7 @@ class VIEW3D_PT_gauss_solver(GaussSubPanel, bpy.types.Panel):
         # Next to Avoid Self-Intersections: check a result (or an input) for a print, with it or without.
         self.layout.operator("object.gauss_select_intersections", icon='SELECT_INTERSECT')
         session = runs.session_of(obj)
-        if session is not None and session.solver.held_vertices:  # where the guard holds the live run
+        if session is not None and len(session.held_anywhere):  # where the guard has held the live run
             self.layout.operator("object.gauss_select_held", icon='RESTRICT_SELECT_OFF')
 
 

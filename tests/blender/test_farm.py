@@ -59,6 +59,17 @@ def test_chunks_without_warm_start_merge_into_the_bytes_of_one_bake(addon, tmp_p
     assert (tmp_path / "merged.pc2").read_bytes() == one.read_bytes()
 
 
+def test_frames_as_flamenco_and_blender_write_them(addon, tmp_path):
+    """Flamenco's frameChunker writes a chunk of two frames as 'A,B' and Blender's own ranges are 'A..B':
+    a chunk given either way bakes its frames, and the merge takes them too."""
+    _shot(warm_start=False, frames=(1, 6))
+    one = _one_bake(tmp_path / "one.pc2")
+    for name, frames in (("a", "1..3"), ("b", "4,5"), ("c", "6")):
+        assert _cli(addon, "bake", "--object", "Capsule", "--frames", frames, "--out", tmp_path / (name + ".pc2")) == 0
+    assert _cli(addon, "merge", tmp_path / "?.pc2", "--frames", "1..6", "--out", tmp_path / "merged.pc2") == 0
+    assert (tmp_path / "merged.pc2").read_bytes() == one.read_bytes()
+
+
 def _relative_error(addon, chunk, one, first, size):
     frames = addon.pc2.read(str(chunk)).frames
     return np.abs(frames - addon.pc2.read(str(one)).frames[first - 1:first - 1 + len(frames)]).max() / size
@@ -87,6 +98,12 @@ def test_warm_start_chunks_warm_up_before_their_first_frame(addon, tmp_path, cap
     print("largest distance from the one bake / size, by warm-up frames:", errors)
     assert errors[0] > errors[2] > errors[8]
     assert errors[8] < WARM_TOLERANCE
+    # The shot in three chunks with the default Warm-up, merged: within the tolerance of the one bake.
+    assert _cli(addon, "bake", "--object", "Capsule", "--frames", "9-16", "--out", tmp_path / "c.pc2") == 0
+    merged = tmp_path / "merged.pc2"
+    assert _cli(addon, "merge", tmp_path / "a.pc2", tmp_path / "c.pc2", tmp_path / "b8.pc2", "--frames", "1-24",
+                "--out", merged) == 0
+    assert _relative_error(addon, merged, one, 1, size) < WARM_TOLERANCE
 
 
 def _farm_cli_script():
@@ -175,11 +192,41 @@ def test_the_script_runs_from_an_extension_install(addon, tmp_path):
     assert addon.pc2.read(str(tmp_path / "c.pc2")).frames.shape[0] == 3
 
 
+def test_the_command_form_opens_the_blend_file_it_is_given(addon, tmp_path, capsys):
+    """`blender --command gauss_bake` opens no file before calling main(): its --blend option does, before or
+    after the job's name, and a file that is not there or not a .blend is an error, not a traceback."""
+    _shot(warm_start=False, frames=(1, 3))
+    blend = tmp_path / "shot.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(blend))
+    one = _one_bake(tmp_path / "one.pc2")
+    junk = tmp_path / "junk.blend"
+    junk.write_bytes(b"BLENDER-v300 but nothing else")
+    bpy.ops.wm.read_homefile(use_empty=True)  # as a command starts: not the shot
+    job = ["--object", "Capsule", "--frames", "1-3", "--out"]
+    assert _cli(addon, "bake", "--blend", blend, *job, tmp_path / "a.pc2") == 0
+    assert _cli(addon, "--blend", blend, "bake", *job, tmp_path / "b.pc2") == 0
+    assert (tmp_path / "a.pc2").read_bytes() == (tmp_path / "b.pc2").read_bytes() == one.read_bytes()
+    capsys.readouterr()
+    for path, message in ((tmp_path / "none.blend", "No .blend file"), (junk, "junk.blend")):
+        assert _cli(addon, "bake", "--blend", path, "--object", "Capsule", "--frames", "1-3",
+                    "--out", tmp_path / "c.pc2") == 1
+        err = capsys.readouterr().err
+        assert message in err and "Traceback" not in err, err
+    assert not (tmp_path / "c.pc2").exists()
+
+
 @pytest.mark.parametrize("args, message", [
     (["bake", "--object", "Nobody", "--frames", "1-3"], "No object 'Nobody'"),
     (["bake", "--object", "Rig", "--frames", "1-3"], "'Rig' is not a mesh object (its type is ARMATURE)"),
     (["bake", "--object", "Capsule", "--frames", "1to3"], "Frames must be A-B"),
     (["bake", "--object", "Capsule", "--frames", "5-1"], "The last frame (1) is before the first (5)"),
+    (["bake", "--object", "Capsule", "--frames", "1-3,7-9"], "Frames 1-3,7-9 are not one range"),
+    (["bake", "--object", "Capsule", "--frames", "1,,2"], "Frames must be A-B"),
+    # Blender would clamp the scene to its last frame and bake that one frame over and over.
+    (["bake", "--object", "Capsule", "--frames", "2000000-2000001"], "Blender's frames are -1048574 to 1048574"),
+    (["bake", "--object", "Capsule", "--frames", "99999999999999"], "Blender's frames are -1048574 to 1048574"),
+    (["merge", "."], "'.' is a folder, not a .pc2 chunk"),
+    (["merge", "part_1.pc2", "--out", "."], "The output '.' is a folder; give a file name"),
     (["merge", "missing_*.pc2"], "No file matches"),
     (["merge", "part_1.pc2", "part_7.pc2"], "a gap"),
     (["merge", "part_1.pc2", "--frames", "1-9"], "The chunks hold frames 1-3, not 1-9"),
@@ -192,7 +239,7 @@ def test_bad_requests_fail_with_a_message_and_write_nothing(addon, tmp_path, cap
                     "--out", "part_%d.pc2" % first) == 0
     before = sorted(os.listdir(tmp_path))
     capsys.readouterr()
-    assert _cli(addon, *(args + ["--out", "out.pc2"])) == 1
+    assert _cli(addon, *(args + ([] if "--out" in args else ["--out", "out.pc2"]))) == 1
     assert message in capsys.readouterr().err
     assert sorted(os.listdir(tmp_path)) == before
 
@@ -231,16 +278,20 @@ def test_a_batch_stylizes_each_file_and_skips_the_bad_ones(addon, tmp_path, caps
     junk.write_text("this is no mesh\n")
     notes = tmp_path / "notes.txt"
     notes.write_text("not a mesh either\n")
-    inputs = [meshes[0], junk, blend, tmp_path / "missing.obj", notes, meshes[1], meshes[2]]
+    broken = tmp_path / "broken.blend"  # Blender cannot read it: the next file must still open
+    broken.write_bytes(b"BLENDER-v300" + bytes(range(256)) * 8)
+    inputs = [meshes[0], junk, broken, blend, tmp_path / "missing.obj", notes, meshes[1], meshes[2]]
     preset = _write_preset(tmp_path / "preset.json")
     out_dir = tmp_path / "out"
     assert _cli(addon, "batch", *inputs, "--preset", preset, "--out-dir", out_dir) == 3  # some skipped
     out = capsys.readouterr().out
-    skipped = re.findall(r"gauss_bake: file (\d)/7: SKIPPED (\S+): (.+)", out)
+    skipped = re.findall(r"gauss_bake: file (\d)/8: SKIPPED (\S+): (.+)", out)
     assert [(n, os.path.basename(p)) for n, p, _reason in skipped] == [
-        ("2", "junk.obj"), ("4", "missing.obj"), ("5", "notes.txt")], out
-    assert [reason for *_, reason in skipped] == ["no faces in it", "no such file", "not a .obj or .blend file"]
-    assert "gauss_bake: batch: 4 stylized, 3 skipped" in out
+        ("2", "junk.obj"), ("3", "broken.blend"), ("5", "missing.obj"), ("6", "notes.txt")], out
+    reasons = [reason for *_, reason in skipped]
+    assert reasons[:1] + reasons[2:] == ["no faces in it", "no such file", "not a .obj or .blend file"]
+    assert "broken.blend" in reasons[1] and "Traceback" not in out, reasons[1]  # Blender's own words
+    assert "gauss_bake: batch: 4 stylized, 4 skipped" in out
     assert sorted(os.listdir(out_dir)) == ["bunny_npm_1839_gauss.obj", "capsule_gauss.blend",
                                            "cat_head_131_gauss.obj", "spot_triangulated_2930_gauss.obj"]
     for mesh in meshes:  # one output per input: the same vertices, moved by the stylization

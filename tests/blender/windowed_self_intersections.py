@@ -11,6 +11,8 @@ run without the option first and must cross itself there, so the checks with the
   status text says while the guard holds vertices back;
 - a post above a plate, both pinned, the post's handle dragged down through the plate: crossing pairs
   without the option, none with it.
+Once the guard has held Spot's vertices back, Select Held Faces in the Solver panel selects the faces
+around every vertex held in the run, and the run goes on.
 Esc must restore the mesh bit for bit, Enter keep it and one Ctrl+Z undo it. The screenshot
 self_intersections.png (the 3D view with its header and the sidebar) is taken while vertices are held.
 The summary goes to BUILD_DIR/screenshots/windowed_self_intersections_result.txt.
@@ -78,7 +80,7 @@ def ctrl_z():
     yield 0.6
 
 
-def run_until_converged(seen, shot=None, until=None):
+def run_until_converged(seen, shot=None, until=None, on_held=None):
     """Generator: a live run started from the 3D view, watched until it is at rest (converged or held
     back by the guard), has done RUN_STEPS
     steps or ``until()`` is true; seen["held"] = whether its status text ever said it held vertices
@@ -95,6 +97,8 @@ def run_until_converged(seen, shot=None, until=None):
                 if shot:
                     yield from scroll_sidebar_down(30)  # the run's box above pushed the checkbox down
                     area_screenshot(os.path.join(kit.SHOTS, shot))
+                if on_held:
+                    yield from on_held()
             if op.session.steps >= RUN_STEPS or op.session.at_rest or (until and until()):
                 break
         yield 0.05
@@ -132,7 +136,7 @@ def live_run_on_spot(name, _prepared):
     yield from click_checkbox(AVOID_PATH)
     check("a click ticks Avoid Self-Intersections", obj.gauss_stylization.avoid_self_intersections)
     started = time.monotonic()
-    yield from run_until_converged(seen, shot="self_intersections.png")
+    yield from run_until_converged(seen, shot="self_intersections.png", on_held=lambda: select_held_faces(obj))
     op = live_operator()
     with_option = crossing_pairs(obj)
     check("with the option the same run leaves Spot without a crossing pair", with_option == 0,
@@ -303,6 +307,33 @@ def handle_drag_into_the_plate(name, _prepared):
           "%d pairs, the post %.3f lower, %d vertices held" % (with_option, dropped, held))
     check("... after moving towards it (the drag reached the solver)", dropped > 0.1, "%.3f" % dropped)
     yield from keep_and_undo(name, original, "dragged result")
+
+
+def select_held_faces(obj):
+    """Generator: once the guard has held vertices back in a live run, the Solver panel's Select Held
+    Faces stays in it (the vertices of one step come and go) and selects the faces around every vertex
+    held so far; the run goes on."""
+    from gauss_stylization.mesh import crossings
+    session = live_operator().session
+    yield from find_sidebar_button("gauss_select_held")
+    check("once vertices were held the Solver panel has Select Held Faces", found["button"] is not None)
+    if found["button"] is None:
+        return
+    yield 1.5  # a few more steps: the button must still be there when the last one held nothing
+    obj.data.polygons.foreach_set("select", np.zeros(len(obj.data.polygons), bool))
+    before = session.held_anywhere
+    press('LEFTMOUSE', *found["button"])
+    yield 0.8
+    after = session.held_anywhere
+    selected = np.zeros(len(obj.data.polygons), bool)
+    obj.data.polygons.foreach_get("select", selected)
+    picked = np.flatnonzero(selected)
+    # The run steps meanwhile: the selection is what was held by the click, between the two readings.
+    low, high = (crossings.polygons_with_vertices(session.arrays, held) for held in (before, after))
+    check("a click selects the faces around every vertex held so far", len(low) > 0
+          and np.isin(low, picked).all() and np.isin(picked, high).all(),
+          "%d selected, %d to %d around the held vertices" % (len(picked), len(low), len(high)))
+    check("... and the live run goes on", live_operator() is not None)
 
 
 def run_scenario(scenario_name, name, prepared):

@@ -7,23 +7,29 @@
 const fs = require("fs");
 const vm = require("vm");
 
-// "1-10,12" -> chunks of at most `size` consecutive frames, each "A-B" (or "A" for one frame).
+// As the Manager's frameChunker: the frames of "1-10,12" or "1..10,12" (Blender's notation), without
+// repeats and sorted, cut into chunks of `size` frames each, whatever the gaps; a chunk is written as its
+// runs of consecutive frames joined by commas, a run as "A-B", a run of two as "A,B", one frame as "A".
 function frameChunker(frames, size) {
-    const list = [];
-    for (const part of String(frames).split(",")) {
-        const match = /^\s*(-?\d+)\s*(?:-\s*(-?\d+)\s*)?$/.exec(part);
-        if (!match) throw `bad frame range ${frames}`;
-        const first = Number(match[1]);
-        const last = match[2] === undefined ? first : Number(match[2]);
-        for (let frame = first; frame <= last; frame++) list.push(frame);
+    const unique = new Set();
+    for (const part of String(frames).replaceAll("..", "-").split(",")) {
+        const ends = part.split("-").map((text) => text.trim());
+        if (ends.length > 2 || ends.some((text) => !/^\d+$/.test(text))) throw `invalid range "${frames}"`;
+        for (let frame = Number(ends[0]); frame <= Number(ends[ends.length - 1]); frame++) unique.add(frame);
     }
+    const list = [...unique].sort((a, b) => a - b);
     const chunks = [];
-    let start = 0;
-    while (start < list.length) {
-        let end = start;
-        while (end + 1 < list.length && end + 1 - start < size && list[end + 1] === list[end] + 1) end++;
-        chunks.push(start === end ? `${list[start]}` : `${list[start]}-${list[end]}`);
-        start = end + 1;
+    for (let start = 0; start < list.length; start += size) {
+        const runs = [];
+        let first = start;
+        const end = Math.min(start + size, list.length);
+        for (let i = start + 1; i <= end; i++) {
+            if (i < end && list[i] === list[i - 1] + 1) continue;
+            const [a, b] = [list[first], list[i - 1]];
+            runs.push(a === b ? `${a}` : b === a + 1 ? `${a},${b}` : `${a}-${b}`);
+            first = i;
+        }
+        chunks.push(runs.join(","));
     }
     return chunks;
 }

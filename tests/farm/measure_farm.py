@@ -1,11 +1,13 @@
 """Measures the farm jobs for docs/performance.md ("On a farm"):
 
     /usr/bin/python3 tests/farm/measure_farm.py bake [--frames 240] [--chunks 4] [--mesh bunny/bun_zipper_35947.obj]
+        [--no-slurm]
     /usr/bin/python3 tests/farm/measure_farm.py batch [--files 20]
 
 bake: a shot of the mesh bent by an armature (make_shot.py, Warm Start off) baked by one Blender process,
 then by a single-node Slurm cluster on this machine (slurm_cluster.py) as CHUNKS array tasks plus the
-merge (farm/slurm/submit.sh); prints both wall times, the per-chunk overhead (a chunk's wall time less
+merge (farm/slurm/submit.sh); prints both wall times, the CPU-time model's o and t (chunks of 1 and 11
+frames) against the one process's CPU time, the per-chunk overhead (a chunk's wall time less
 its frames' time: Blender's start, loading the .blend, registering the add-on) and the time per frame,
 and checks that the merged cache is the one-process bake byte for byte.
 batch: farm_cli.py batch over every .obj of ../shared/meshes, the shot .blend files it makes and the
@@ -18,6 +20,7 @@ import json
 import os
 import pathlib
 import re
+import resource
 import subprocess
 import sys
 import tempfile
@@ -32,11 +35,18 @@ sys.path.insert(0, str(HERE))
 from slurm_cluster import Cluster  # noqa: E402
 
 
+def _children_cpu():
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def run(argv, ok=(0,), **options):
-    start = time.perf_counter()
+    """(result, wall seconds); the CPU seconds (user + sys) of the run are in run.cpu afterwards."""
+    start, cpu = time.perf_counter(), _children_cpu()
     result = subprocess.run([str(a) for a in argv], capture_output=True, text=True, stdin=subprocess.DEVNULL,
                             **options)
     wall = time.perf_counter() - start
+    run.cpu = _children_cpu() - cpu
     if result.returncode not in ok:
         sys.exit("%s failed (%d):\n%s\n%s" % (argv, result.returncode, result.stdout[-3000:], result.stderr[-3000:]))
     return result, wall
@@ -61,9 +71,12 @@ def measure_bake(args):
     one = work / "one.pc2"
     result, one_wall = run(["blender", "-b", blend, "--factory-startup", "--python-exit-code", "1", "-P", FARM_CLI,
                             "--", "bake", "--object", "Shot", "--frames", "1-%d" % args.frames, "--out", one])
-    one_frames = bake_time(result.stdout)
-    print("one process: %.1f s wall, %.1f s of frames (%.3f s per frame), overhead %.1f s"
-          % (one_wall, one_frames, one_frames / args.frames, one_wall - one_frames), flush=True)
+    one_frames, one_cpu = bake_time(result.stdout), run.cpu
+    print("one process: %.1f s wall, %.1f s of frames (%.3f s per frame), overhead %.1f s; %.1f s of CPU"
+          % (one_wall, one_frames, one_frames / args.frames, one_wall - one_frames, one_cpu), flush=True)
+    model_check(blend, args.frames, one_cpu, work)
+    if args.no_slurm:
+        return
     with Cluster(work / "slurm", cpus=2) as cluster:
         out = work / "farm" / "shot.pc2"
         start = time.perf_counter()
@@ -86,6 +99,23 @@ def measure_bake(args):
     print(merge_log.strip().splitlines()[-1])
     if not same:
         sys.exit("the merged cache differs from the one-process bake")
+
+
+def model_check(blend, frames, one_cpu, work):
+    """The CPU-time model of docs/performance.md: o (Blender's start, the .blend, the add-on) and t (a
+    frame) from chunks of 1 and 11 frames, and what they predict for the one-process bake."""
+    run(["blender", "-b", "--factory-startup", "--python-expr", "pass"])
+    empty = run.cpu
+    cpu = {}
+    for count in (1, 11):
+        run(["blender", "-b", blend, "--factory-startup", "--python-exit-code", "1", "-P", FARM_CLI, "--", "bake",
+             "--object", "Shot", "--frames", "1-%d" % count, "--out", work / ("model_%d.pc2" % count)])
+        cpu[count] = run.cpu
+    t = (cpu[11] - cpu[1]) / 10.0
+    o = cpu[1] - t
+    print("CPU: empty Blender %.1f s, a chunk of 1 frame %.1f s, of 11 frames %.1f s -> t = %.2f s a frame, "
+          "o = %.1f s a chunk; predicted for one process o + %d t = %.1f s, measured %.1f s"
+          % (empty, cpu[1], cpu[11], t, o, frames, o + frames * t, one_cpu), flush=True)
 
 
 def measure_batch(args):
@@ -113,6 +143,7 @@ def main():
     bake.add_argument("--frames", type=int, default=240)
     bake.add_argument("--chunks", type=int, default=4)
     bake.add_argument("--mesh", default="bunny/bun_zipper_35947.obj")
+    bake.add_argument("--no-slurm", action="store_true", help="only the one process and the CPU-time model")
     batch = jobs.add_parser("batch")
     batch.add_argument("--files", type=int, default=20)
     args = parser.parse_args()

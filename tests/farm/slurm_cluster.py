@@ -24,6 +24,7 @@ import time
 
 START_TIMEOUT = 60.0  # seconds for the daemons to answer and the node to be idle
 STOP_TIMEOUT = 20.0
+COMMAND_TIMEOUT = 15.0  # seconds for one sinfo or squeue (Slurm's clients wait 10 s for an answer)
 DAEMONS = ("munged", "slurmctld", "slurmd")
 
 
@@ -165,8 +166,12 @@ class Cluster:
         state = ""
         while time.monotonic() < deadline:
             self._check_alive()
-            result = subprocess.run(["sinfo", "-h", "-N", "-o", "%T"], capture_output=True, text=True,
-                                    env=self.env, stdin=subprocess.DEVNULL)
+            try:
+                result = subprocess.run(["sinfo", "-h", "-N", "-o", "%T"], capture_output=True, text=True,
+                                        env=self.env, stdin=subprocess.DEVNULL, timeout=COMMAND_TIMEOUT)
+            except subprocess.TimeoutExpired:
+                state = "sinfo did not answer within %.0f s" % COMMAND_TIMEOUT
+                continue
             state = (result.stdout + result.stderr).strip()
             if result.returncode == 0 and state.rstrip("*") == "idle":
                 return
@@ -180,12 +185,18 @@ class Cluster:
     def stop(self):
         """Cancel every job of this cluster, then end the daemons (slurmd, slurmctld, munged)."""
         if "slurmctld" in self.processes and self.processes["slurmctld"].poll() is None:
-            subprocess.run(["scancel", "--full", "--user", "root"], env=self.env, capture_output=True,
-                           stdin=subprocess.DEVNULL, timeout=STOP_TIMEOUT)
+            try:
+                subprocess.run(["scancel", "--full", "--user", "root"], env=self.env, capture_output=True,
+                               stdin=subprocess.DEVNULL, timeout=STOP_TIMEOUT)
+            except subprocess.TimeoutExpired:
+                pass  # the daemons are ended below all the same
             deadline = time.monotonic() + STOP_TIMEOUT
             while time.monotonic() < deadline:
-                result = subprocess.run(["squeue", "-h"], env=self.env, capture_output=True, text=True,
-                                        stdin=subprocess.DEVNULL)
+                try:
+                    result = subprocess.run(["squeue", "-h"], env=self.env, capture_output=True, text=True,
+                                            stdin=subprocess.DEVNULL, timeout=COMMAND_TIMEOUT)
+                except subprocess.TimeoutExpired:
+                    break  # the daemons are ended below all the same
                 if result.returncode != 0 or not result.stdout.strip():
                     break
                 time.sleep(0.5)

@@ -31,11 +31,13 @@ def _worker_argv(command):
 
 def test_the_compiled_job_run_task_by_task_merges_into_the_one_process_bake(shot, one_bake, tmp_path):
     out = tmp_path / "capsule.pc2"
-    size = (SHOT_FRAMES[1] - SHOT_FRAMES[0] + 1) // 2  # two chunks: each task starts Blender (CI's time)
-    tasks = _compile({"frames": "%d-%d" % SHOT_FRAMES, "object": OBJECT, "chunk_size": size, "output": str(out),
+    # Two chunks (each task starts Blender: CI's time), the second of two frames, which frameChunker
+    # writes "47,48" as the Manager's does; Blender's "1..48" is a range Flamenco takes too.
+    size = SHOT_FRAMES[1] - SHOT_FRAMES[0] - 1
+    tasks = _compile({"frames": "%d..%d" % SHOT_FRAMES, "object": OBJECT, "chunk_size": size, "output": str(out),
                       "farm_cli": str(FARM_CLI), "blendfile": str(shot)})
     names = [task["name"] for task in tasks]
-    assert names == ["bake-1-24", "bake-25-48", "merge"]
+    assert names == ["bake-1-46", "bake-47,48", "merge"]
     assert tasks[-1]["dependencies"] == names[:-1] and all(not t["dependencies"] for t in tasks[:-1])
     assert all(task["type"] == "blender" and len(task["commands"]) == 1 for task in tasks)
     for task in list(reversed(tasks[:-1])) + tasks[-1:]:  # the bakes in any order, the merge last
@@ -51,3 +53,14 @@ def test_a_failing_task_fails(shot, tmp_path):
                             stdin=subprocess.DEVNULL, timeout=120)
     assert result.returncode != 0
     assert "No object 'Nobody'" in result.stderr
+
+
+def test_frames_that_are_not_one_range_are_refused_at_submission(shot, tmp_path):
+    """Chunks of "1-10,20-30" would not join into one cache: compileJob throws, which the Manager shows as
+    the submission's error."""
+    settings = {"frames": "1-10,20-30", "object": OBJECT, "chunk_size": 8, "output": str(tmp_path / "x.pc2"),
+                "farm_cli": str(FARM_CLI), "blendfile": str(shot)}
+    result = subprocess.run(["node", HERE / "flamenco_compile.js", JOB_TYPE, json.dumps(settings)],
+                            capture_output=True, text=True, stdin=subprocess.DEVNULL, timeout=60)
+    assert result.returncode != 0
+    assert 'Frames must be one range A-B (e.g. 1-240), got "1-10,20-30"' in result.stderr

@@ -28,16 +28,35 @@ def say(text):
     print("%s: %s" % (PREFIX, text), flush=True)
 
 
+_RUN = re.compile(r"\s*(-?\d+)\s*(?:(?:-|\.\.)\s*(-?\d+)\s*)?")
+
+
 def parse_frames(text):
-    """'A-B' (or 'A' alone) -> (A, B); frames may be negative ('-10--1')."""
-    match = re.fullmatch(r"\s*(-?\d+)\s*(?:-\s*(-?\d+)\s*)?", text)
-    if match is None:
-        raise SettingsError("Frames must be A-B (e.g. 1-48), got '%s'" % text)
-    first = int(match.group(1))
-    last = int(match.group(2)) if match.group(2) is not None else first
-    if last < first:
-        raise SettingsError("The last frame (%d) is before the first (%d)" % (last, first))
-    return first, last
+    """One range of frames -> (A, B): 'A-B', 'A..B' (Blender's way), 'A', or a comma list of these that
+    joins into one range without gaps ('47,48': how Flamenco's frameChunker writes a chunk of two
+    frames). Frames may be negative ('-10--1')."""
+    runs = []
+    for part in text.split(","):
+        match = _RUN.fullmatch(part)
+        if match is None:
+            raise SettingsError("Frames must be A-B (e.g. 1-48), got '%s'" % text)
+        first = int(match.group(1))
+        last = int(match.group(2)) if match.group(2) is not None else first
+        if last < first:
+            raise SettingsError("The last frame (%d) is before the first (%d)" % (last, first))
+        runs.append((first, last))
+    runs.sort()
+    # Blender clamps the scene's frame to its range: a frame beyond it would bake the last one again.
+    frame = bpy.types.Scene.bl_rna.properties["frame_current"]
+    if runs[0][0] < frame.hard_min or max(last for _first, last in runs) > frame.hard_max:
+        raise SettingsError("Blender's frames are %d to %d, got '%s'" % (frame.hard_min, frame.hard_max, text))
+    end = runs[0][1]
+    for first, last in runs[1:]:
+        if first > end + 1:
+            raise SettingsError("Frames %s are not one range: frame %d is missing (a chunk bakes frames "
+                                "without gaps)" % (text, end + 1))
+        end = max(end, last)
+    return runs[0][0], end
 
 
 def mesh_object(name):
@@ -116,6 +135,11 @@ def expand(patterns):
 def merge_chunks(patterns, out, frames=None):
     """Merge the chunks into ``out``; frames: (first, last) the chunks must cover exactly, or None."""
     paths = expand(patterns)
+    for path in paths:
+        if os.path.isdir(path):
+            raise SettingsError("'%s' is a folder, not a .pc2 chunk" % path)
+    if os.path.isdir(out):
+        raise SettingsError("The output '%s' is a folder; give a file name" % out)
     try:
         if frames is not None:
             heads = [pc2.header(path) for path in paths]

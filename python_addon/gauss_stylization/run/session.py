@@ -186,6 +186,9 @@ class Session:
         margin = MAX_EXTENT * max(upper - lower, 1e-30)
         self.bounds = (lower - margin, upper + margin)
         self.steps = 0
+        # Every vertex Avoid Self-Intersections has held back in some step of this run (Select Held
+        # Faces): the set of one step comes and goes from step to step, where the run is held does not.
+        self._ever_held = np.zeros(self.arrays.num_vertices, bool)
         self.step_ms = deque(maxlen=TIMINGS_KEPT)  # ms per step, of the last TIMINGS_KEPT step() / step_until()
         self.background_pins = background_pins
         self.pins_setup = None         # a PinsSetup running or not yet looked at
@@ -355,9 +358,16 @@ class Session:
             self._stepped(count, start)
         return count
 
+    @property
+    def held_anywhere(self):
+        """Sorted (#H,) indices of the vertices the guard has held back in some step of this run."""
+        return np.flatnonzero(self._ever_held)
+
     def _stepped(self, count, start):
         self.step_ms.append((time.perf_counter() - start) * 1000.0 / max(count, 1))
         self.steps += count
+        if self.solver.held_vertices:  # the last of the ``count`` steps: a tick steps once
+            self._ever_held[self.solver.held_vertex_indices] = True
         self.solver.vertices_into(self.result)
         # Never write NaN or a blown-up shape into the artist's mesh: two reductions, which
         # propagate NaN and allocate nothing.
