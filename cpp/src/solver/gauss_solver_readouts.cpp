@@ -34,10 +34,14 @@ void GaussSolver::write_vertices(T* out) const {
 std::vector<int> GaussSolver::held_vertex_indices() const {
   std::vector<int> found;
   if (!guard_ || guard_->last_held() == 0) return found;
-  std::vector<int> old_of_new(new_of_old_.size());
-  for (size_t old = 0; old < new_of_old_.size(); ++old) old_of_new[new_of_old_[old]] = static_cast<int>(old);
+  // A live run reads this after every step the guard holds: the inverse numbering is made once, so a
+  // call costs the held vertices, not the mesh.
+  if (old_of_new_.size() != new_of_old_.size()) {
+    old_of_new_.resize(new_of_old_.size());
+    for (size_t old = 0; old < new_of_old_.size(); ++old) old_of_new_[new_of_old_[old]] = static_cast<int>(old);
+  }
   found.reserve(guard_->last_held_vertices().size());
-  for (int v : guard_->last_held_vertices()) found.push_back(old_of_new[v]);
+  for (int v : guard_->last_held_vertices()) found.push_back(old_of_new_[v]);
   std::sort(found.begin(), found.end());
   return found;
 }

@@ -234,6 +234,7 @@ class GaussSolver {
   // Internally vertices and faces are renumbered for locality (spatial_order.h); every array
   // below is in that numbering, the public interface in the caller's.
   std::vector<int> new_of_old_;
+  mutable std::vector<int> old_of_new_;  // its inverse, made by the first held_vertex_indices() call
   MeshTopology topo_;
   int num_input_faces_ = 0;
   std::vector<Eigen::Vector3d> input_;  // caller's coordinates, returned verbatim for fixed vertices
