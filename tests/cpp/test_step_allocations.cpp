@@ -78,6 +78,19 @@ TEST(StepAllocations, StepsDoNotAllocate) {
   const long before_guard = g_allocations.load();
   for (int i = 0; i < 5; ++i) s.step();
   EXPECT_EQ(g_allocations.load() - before_guard, 0);
+  // Resolution Independent: switching it on allocates its weights; its steps (the bending term's pull
+  // on every rotation fit, both methods) do not.
+  s.set_avoid_self_intersections(false);
+  s.set_resolution_independent(true);
+  for (int i = 0; i < 3; ++i) s.step();
+  const long before_resolution_cubic = g_allocations.load();
+  for (int i = 0; i < 5; ++i) s.step();
+  EXPECT_EQ(g_allocations.load() - before_resolution_cubic, 0);
+  s.set_method(gauss::Method::gauss);
+  for (int i = 0; i < 3; ++i) s.step();
+  const long before_resolution_gauss = g_allocations.load();
+  for (int i = 0; i < 5; ++i) s.step();
+  EXPECT_EQ(g_allocations.load() - before_resolution_gauss, 0);
 }
 
 TEST(StepAllocations, CholeskySolveDoesNotAllocate) {
