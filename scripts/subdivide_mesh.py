@@ -16,6 +16,10 @@ import sys
 
 import numpy as np
 
+# The OBJ reader the tests and the quality matrix share.
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent / "tests" / "common"))
+from mesh_files import read_obj  # noqa: E402  (re-exported: the measure scripts import it from here)
+
 
 def midpoint_subdivide(V, F, levels=1):
     """(V', F') after `levels` rounds of splitting each triangle of F (#F,3) into four.
@@ -33,23 +37,6 @@ def midpoint_subdivide(V, F, levels=1):
         ab, bc, ca = mid[:, 0], mid[:, 1], mid[:, 2]
         F = np.vstack([np.stack(t, axis=1) for t in ((a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca))])
     return V, F
-
-
-def read_obj(path):
-    """Vertices (#V,3) and triangles (#F,3, polygons fanned) of an OBJ file."""
-    V, F = [], []
-    with open(path) as f:
-        for line in f:
-            parts = line.split()
-            if not parts:
-                continue
-            if parts[0] == "v":
-                V.append([float(x) for x in parts[1:4]])
-            elif parts[0] == "f":
-                idx = [int(p.split("/")[0]) for p in parts[1:]]
-                idx = [i - 1 if i > 0 else len(V) + i for i in idx]
-                F += [(idx[0], idx[i], idx[i + 1]) for i in range(1, len(idx) - 1)]
-    return np.array(V, np.float64), np.array(F, np.int64)
 
 
 def write_obj(path, V, F):

@@ -17,7 +17,8 @@ def read_obj(path):
         if parts[0] == "v":
             V.append([float(x) for x in parts[1:4]])
         elif parts[0] == "f":
-            idx = [int(p.split("/")[0]) - 1 for p in parts[1:]]
+            idx = [int(p.split("/")[0]) for p in parts[1:]]
+            idx = [i - 1 if i > 0 else len(V) + i for i in idx]  # negative: counted back from the last v
             F += [(idx[0], idx[i], idx[i + 1]) for i in range(1, len(idx) - 1)]
     return np.array(V, np.float64).reshape(-1, 3), np.array(F, dtype=np.int64).reshape(-1, 3)
 
