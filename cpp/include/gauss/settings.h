@@ -231,6 +231,10 @@ constexpr auto solver_readouts() {
       readout("held_vertices", &Solver::held_vertices,
               "Vertices avoid_self_intersections held back in the last step or pin move (0 when it is off)."),
       readout("step_count", &Solver::step_count, "Steps since the set-up or the last reset()."),
+      readout("runaway_steps", &Solver::runaway_steps,
+              "Steps since the set-up or the last reset() whose result ran away (far past the mesh, its pins and\n"
+              "the last set_vertices) and that were redone as plain ARAP steps. Only meshes with strongly\n"
+              "negative cotangent weights do this (docs/robustness.md)."),
       readout("factorization_count", &Solver::factorization_count,
               "Factorizations so far: 1 after the set-up, one more per set_pins()."),
       readout("num_vertices", &Solver::num_vertices, "#V: the rows of V."),

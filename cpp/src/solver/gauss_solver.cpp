@@ -35,6 +35,10 @@ constexpr int64_t kSetupBytesPerFace = 360, kSetupBytesPerVertex = 320;
 // bent into a cylinder (docs/resolution.md#bending).
 constexpr double kArapBending = 0.63, kSmoothBending = 2.0;
 
+// How far past reach_ (gauss_solver.h) a step's result may lie before the step counts as running away:
+// stylized shapes stay within about 1.5 of it, and the fuzzing's contract allows 10 extents.
+constexpr double kRunawayReach = 4.0;
+
 double ms_since(Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
@@ -322,8 +326,23 @@ void GaussSolver::admm_round(bool first_round) {
   });
 }
 
-void GaussSolver::assemble_rhs(bool with_edges) {
-  if (!with_edges) {  // the cubic method: plain ARAP's global step, the same sum folded per vertex
+void GaussSolver::update_reach() {
+  double reach = 0.0;
+  for (const Vector3d& x : rest_) reach = std::max(reach, x.cwiseAbs().maxCoeff());
+  for (const Vector3d& x : X_) reach = std::max(reach, x.cwiseAbs().maxCoeff());
+  for (const Vector3d& t : pin_targets_) reach = std::max(reach, ((t - center_) / scale_).cwiseAbs().maxCoeff());
+  reach_ = reach;
+}
+
+bool GaussSolver::ran_away() const {
+  const double limit = kRunawayReach * reach_;
+  for (const Vector3d& x : X_)
+    if (!(x.cwiseAbs().maxCoeff() <= limit)) return true;  // NaN counts as away
+  return false;
+}
+
+void GaussSolver::assemble_rhs(Rhs terms) {
+  if (terms == Rhs::cubic) {  // the cubic method: plain ARAP's global step, the same sum folded per vertex
     parallel::for_each(laplacian_.num_unknowns(), parallel::kMinParallelItems, [&](int u) {
       laplacian_.set_rhs(u, laplacian_.constant_rhs(u) + cubic_.global_rhs(laplacian_.vertex_of_unknown(u), rotation_));
     });
@@ -339,6 +358,7 @@ void GaussSolver::assemble_rhs(bool with_edges) {
     Vector3d d[3];
     for (int k = 0; k < 3; ++k) {
       d[k] = Rf * slot_rest_[f][k];
+      if (terms == Rhs::arap) continue;
       const double s = topo_.face_edge_sign[f][k];
       d[k] = (d[k] + (lam * slot_weight_[f][k] * s) * edge_star_[topo_.face_edge[f][k]]) * inv;
     }
@@ -382,7 +402,7 @@ void GaussSolver::local_global_step() {
   }
   timings_.admm = ms_since(t0);
   t0 = Clock::now();
-  assemble_rhs(gauss);
+  assemble_rhs(gauss ? Rhs::gauss : Rhs::cubic);
   timings_.rhs = ms_since(t0);
   t0 = Clock::now();
   laplacian_.solve(X_);
@@ -399,6 +419,14 @@ void GaussSolver::step() {
   if (guard_) safe_ = X_;
   const auto map = [this] {
     local_global_step();
+    // The edge pull is a contraction when the cotangent weights are positive; where enough of them are
+    // negative (obtuse, non-Delaunay patches) it can amplify the iterate from step to step. Such a step
+    // is redone without the pull: plain ARAP with the rotations just fitted, which does not read the iterate.
+    if (method_ == Method::gauss && ran_away()) {
+      assemble_rhs(Rhs::arap);
+      laplacian_.solve(X_);
+      ++runaway_steps_;
+    }
     if (keep_volume_) volume_.restore(topo_, X_);
     if (guard_) guard_->limit(safe_, X_);
   };
@@ -439,7 +467,9 @@ void GaussSolver::reset() {
   if (cubic_ready_) cubic_.reset();
   laplacian_.place_pins(X_);
   if (guard_) guard_->start_from(X_);
+  update_reach();
   step_count_ = 0;
+  runaway_steps_ = 0;
   iteration_.invalidate();
 }
 

@@ -154,13 +154,14 @@ void GaussSolver::set_pin_positions(const double* pin_positions, int count) {
 }
 
 void GaussSolver::place_pins_guarded() {
-  if (!guard_) {
+  if (guard_) {
+    safe_ = X_;
     laplacian_.place_pins(X_);
-    return;
+    guard_->limit(safe_, X_);
+  } else {
+    laplacian_.place_pins(X_);
   }
-  safe_ = X_;
-  laplacian_.place_pins(X_);
-  guard_->limit(safe_, X_);
+  update_reach();
 }
 
 void GaussSolver::set_avoid_self_intersections(bool on) {
@@ -206,6 +207,7 @@ void GaussSolver::set_vertices(const double* V, int count) {
     if (topo_.component[v] >= 0) X_[v] = (Vector3d(V[3 * old], V[3 * old + 1], V[3 * old + 2]) - center_) / scale_;
   }
   laplacian_.place_pins(X_);
+  update_reach();
   if (guard_) guard_->start_from(X_);  // the caller's vertices are the new start, contacts and all
   std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
   std::fill(rotation_.begin(), rotation_.end(), Eigen::Matrix3d::Identity());  // the bending term reads the last step's

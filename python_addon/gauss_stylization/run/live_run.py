@@ -42,6 +42,8 @@ SETUP_HINT = "Esc: cancel"
 SAVED_NOTE = "Saved without this run (Enter keeps it)"
 SAVED_REPORT = "Saved %s with the meshes as before Stylize: the live run goes on, and is saved once kept"
 HELD_BACK = "held back by Avoid Self-Intersections at %d vertices"  # the guard, not convergence, stopped it
+# Steps ran away and fell back to plain ARAP (Session.unstable, docs/robustness.md).
+UNSTABLE = "unstable: lower Lambda or ADMM Iterations"
 
 
 class KeysNote(str):
@@ -277,6 +279,9 @@ class LiveRun:
         held = sum(session.solver.held_vertices for session in sessions if session not in held_back_ones)
         if held:
             text += "  |  %d vertices held back from passing through" % held
+        for session in sessions:
+            if session.unstable:
+                text += "  |  " + ("'%s' " % session.name if len(sessions) > 1 else "") + UNSTABLE
         for session in sessions:
             busy = session.busy
             if busy is not None:

@@ -90,9 +90,11 @@ def _until_converged_note(session, steps):
         return 'WARNING', ("'%s' stopped after %d steps, held back by Avoid Self-Intersections at %d "
                            "vertices short of where the style pulls them (it did not converge); the "
                            "shape is kept" % (session.name, steps, session.solver.held_vertices))
+    unstable = (" and is unstable at these settings (lower Lambda or ADMM Iterations)"
+                if session.unstable else "")
     return 'WARNING', ("'%s' did not converge within %d steps (its last step changed it by %.1e of its "
-                       "displacement, its Tolerance is %g); the shape after %d steps is kept"
-                       % (session.name, steps, session.reldv, session.solver.tolerance, steps))
+                       "displacement, its Tolerance is %g)%s; the shape after %d steps is kept"
+                       % (session.name, steps, session.reldv, session.solver.tolerance, unstable, steps))
 
 
 def run(operator, context, planned, steps, pin_targets=""):

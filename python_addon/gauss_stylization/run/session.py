@@ -38,6 +38,10 @@ MAX_EXTENT = 100.0
 # takes (measure_tick.py: 60 ticks by default), so its medians still cover every step it measured.
 TIMINGS_KEPT = 1000
 
+# A run is called unstable while a step of the last this many ran away (Session.unstable): long
+# enough that the word does not flicker, short enough that it goes once a lower Lambda settles it.
+UNSTABLE_STEPS = 30
+
 
 def ensure_style_slot(settings):
     """An artist must be able to press Stylize right away: add a slot of the default preset
@@ -189,6 +193,8 @@ class Session:
         # Every vertex Avoid Self-Intersections has held back in some step of this run (Select Held
         # Faces): the set of one step comes and goes from step to step, where the run is held does not.
         self._ever_held = np.zeros(self.arrays.num_vertices, bool)
+        self._runaways = 0             # solver.runaway_steps at the last step
+        self._last_runaway = None      # self.steps when a step last ran away (unstable)
         self.step_ms = deque(maxlen=TIMINGS_KEPT)  # ms per step, of the last TIMINGS_KEPT step() / step_until()
         self.background_pins = background_pins
         self.pins_setup = None         # a PinsSetup running or not yet looked at
@@ -359,6 +365,13 @@ class Session:
         return count
 
     @property
+    def unstable(self):
+        """Did a step in the last UNSTABLE_STEPS run away (Solver.runaway_steps: the edge pull grew the
+        mesh, and the step fell back to plain ARAP)? Strongly obtuse triangles at a high Lambda or ADMM
+        Iterations do that; the shape stays bounded but does not settle."""
+        return self._last_runaway is not None and self.steps - self._last_runaway < UNSTABLE_STEPS
+
+    @property
     def held_anywhere(self):
         """Sorted (#H,) indices of the vertices the guard has held back in some step of this run."""
         return np.flatnonzero(self._ever_held)
@@ -366,6 +379,10 @@ class Session:
     def _stepped(self, count, start):
         self.step_ms.append((time.perf_counter() - start) * 1000.0 / max(count, 1))
         self.steps += count
+        runaways = self.solver.runaway_steps  # since the solver's last reset: it may go down
+        if runaways > self._runaways:
+            self._last_runaway = self.steps
+        self._runaways = runaways
         if self.solver.held_vertices:  # the last of the ``count`` steps: a tick steps once
             self._ever_held[self.solver.held_vertex_indices] = True
         self.solver.vertices_into(self.result)

@@ -185,6 +185,7 @@ class GaussSolver {
   double arap_energy() const;  // E_ARAP of the current mesh with its optimal rotations (normalized frame)
   double g_energy() const;     // E_g = sum over faces of sum_s w_s g_s(n_f) (w: set_face_weights, else 1)
   int step_count() const { return step_count_; }
+  int runaway_steps() const { return runaway_steps_; }
   int factorization_count() const { return factorization_count_; }
   int num_vertices() const { return topo_.num_vertices; }
   int num_input_faces() const { return num_input_faces_; }
@@ -210,8 +211,16 @@ class GaussSolver {
   // step), which the rotation fits add to their covariance; nullptr when off.
   const Eigen::Matrix3d* rotation_prior();
   void admm_round(bool first_round);
-  // Eq. 27's right-hand side from rotation_; with_edges adds the Gauss method's lambda w e* terms.
-  void assemble_rhs(bool with_edges);
+  // The global step's right-hand side from rotation_: Eq. 27's (the Gauss method: ARAP's targets and
+  // the lambda w e* pull), plain ARAP's over the faces, or the cubic method's (per vertex).
+  enum class Rhs { gauss, arap, cubic };
+  void assemble_rhs(Rhs terms);
+  // The Gauss step's guard against running away (docs/robustness.md, "Negative cotangent weights"):
+  // reach_ is how far from the origin (normalized frame, max norm) the rest mesh, the pin targets and
+  // the caller's last set_vertices() lie; a step whose result lies beyond kRunawayReach times that is
+  // redone as a plain ARAP step, which does not read the iterate.
+  void update_reach();
+  bool ran_away() const;
   // The cubic method's per-vertex strength and orientation from styles_ and the faces' styles.
   void update_cubic_styles();
   // After styles_ or the faces' styles changed: blend_mu_ and blend_shares_ anew, then the cubic
@@ -289,6 +298,8 @@ class GaussSolver {
   std::unique_ptr<SelfIntersectionGuard> guard_;     // while avoid_self_intersections is on
   std::vector<Eigen::Vector3d> safe_;                // #V while it is on: X before the step
   double denied_reldv_ = 0;                          // the last step's move the guard took back, as reldV
+  double reach_ = 1.0;                                // update_reach()
+  int runaway_steps_ = 0;                            // steps redone as plain ARAP since the set-up or reset
 
   // Per-step buffers (allocated once).
   std::vector<Eigen::Vector3d> normal_star_;                 // #F
