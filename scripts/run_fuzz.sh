@@ -28,9 +28,11 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 mkdir -p "$build/artifacts"
 common=(-rss_limit_mb=2048 -artifact_prefix="$build/artifacts/")
 # A hang is an input that runs past the timeout. The seeds include deliberately long runs (*_long_run:
-# thousands of steps, up to 27 s each here at load 9), so replaying them allows four times the
-# fuzzing's 30 s: a 2-core machine under load must not turn a known input into a "hang".
-replay_timeout=120 fuzz_timeout=30
+# thousands of steps, up to 27 s each here at load 9), and mutated inputs reach the harness's whole
+# work budget too (a 120-vertex mesh's 4,000 rounds took 17 s here under load), so both timeouts leave
+# room for a machine twice as slow: a known input or an ordinary long run must not count as a "hang",
+# and a real hang runs past any of them.
+replay_timeout=120 fuzz_timeout=60
 
 # 1. Every input that ever crashed, and every seed: each runs once.
 shopt -s nullglob
