@@ -227,11 +227,13 @@ void SelfIntersectionGuard::take_slid_pairs() {
   if (slid_.empty()) return;
   std::sort(slid_.begin(), slid_.end());
   slid_.erase(std::unique(slid_.begin(), slid_.end()), slid_.end());
+  // Merged into a kept buffer and swapped in (inplace_merge would allocate its own buffer each time):
+  // the buffers only grow past the largest set so far.
   for (std::vector<uint64_t>* list : {&allowed_, &crossing_}) {
-    const size_t middle = list->size();
-    list->insert(list->end(), slid_.begin(), slid_.end());
-    std::inplace_merge(list->begin(), list->begin() + middle, list->end());
-    list->erase(std::unique(list->begin(), list->end()), list->end());
+    merged_.resize(list->size() + slid_.size());
+    const auto end = std::set_union(list->begin(), list->end(), slid_.begin(), slid_.end(), merged_.begin());
+    merged_.erase(end, merged_.end());
+    list->swap(merged_);
   }
   slid_.clear();
 }

@@ -121,6 +121,7 @@ class SelfIntersectionGuard {
   std::vector<uint64_t> crossing_;        // sorted: crossing at the start, and the pairs crossings slid into
   std::vector<uint64_t> slid_;            // pairs a crossing slid into during the current limit()
   std::mutex slid_mutex_;                 // contacts() notes them from several threads
+  std::vector<uint64_t> merged_;          // take_slid_pairs()'s output before it is swapped in
   std::vector<Eigen::Vector3d> move_;     // #V: a staged move's whole displacement
   std::vector<Eigen::Vector3d> stage_start_;  // #V
   std::vector<uint8_t> ever_held_;        // #V: held in some stage of the current limit()
