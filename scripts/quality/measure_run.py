@@ -91,7 +91,7 @@ def run_option(option, V, F, pairs_in):
     finite = bool(np.isfinite(W).all())
     record.update(
         steps=len(step_ms), stopped=bool(solver.last_reldv < TOLERANCE), converged=bool(solver.converged),
-        held_back=bool(solver.held_back),
+        held_back=bool(solver.held_back), runaway=solver.runaway_steps,
         held_max=max(held, default=0),
         held_last=held[-1] if held else 0, ms_per_step=statistics.median(step_ms) if step_ms else 0.0,
         cpu_ms_per_step=statistics.median(cpu_ms) if cpu_ms else 0.0,

@@ -118,6 +118,8 @@ def findings(records):
             continue
         if not r["bounded"]:
             basics.append(f"{where}: result {'not bounded' if r['finite'] else 'not finite'}")
+        if r.get("runaway"):
+            basics.append(f"{where}: {r['runaway']} steps ran away (redone as plain ARAP, docs/robustness.md)")
         if not r["stopped"]:
             found["Not converged within the step cap"].append(f"{where}: {r['steps']} steps")
         tags = options.by_name(r["option"]).tags

@@ -9,6 +9,7 @@ Per mesh and option, a threshold holds any of:
                      in the last step (a run the guard stopped is not converged);
   "error":           true: the run was refused with a clean error when the thresholds were made, and
                      still may be (a result is fine too; a crash never is).
+A run in which a step ran away (Solver.runaway_steps, docs/robustness.md) fails whatever its threshold.
 """
 import json
 import math
@@ -45,6 +46,8 @@ def violations(record, threshold):
     if "error" in record:
         return [] if threshold.get("error") else [f"{where}: error '{record['error']}', expected a result"]
     broken = []
+    if record.get("runaway"):  # bounded only thanks to the fallback: never a pass, whatever the threshold
+        broken.append(f"{where}: {record['runaway']} steps ran away (redone as plain ARAP)")
     if threshold.get("finite_bounded") and not record["bounded"]:
         broken.append(f"{where}: finite_bounded: result {'not bounded' if record['finite'] else 'not finite'}")
     if threshold.get("must_converge") and not converged_clean(record):

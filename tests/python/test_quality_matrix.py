@@ -67,6 +67,7 @@ def test_every_measure_of_a_threshold_is_checked():
     assert thresholds.check([_record(share=0.7)], table) == ["m.obj / cube +avoid: min_share: share 0.700 < 0.78"]
     assert "max_new_pairs: 3 new" in thresholds.check([_record(new_pairs=3)], table)[0]
     assert "finite_bounded: result not bounded" in thresholds.check([_record(bounded=False)], table)[0]
+    assert "7 steps ran away" in thresholds.check([_record(runaway=7)], table)[0]
     assert "must_converge: stopped by the guard" in thresholds.check(
         [_record(held_last=12, held_back=True, converged=False)], table)[0]
     capped = _record(stopped=False, converged=False, steps=400)
