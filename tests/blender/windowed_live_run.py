@@ -286,6 +286,53 @@ def cubic_converges_accelerated(name):
     settings.method = before
 
 
+def unstable_run_says_so(name):
+    """A mesh whose steps run away (a cube with a corner pulled far out, at 20 ADMM Iterations) stays in
+    place in the viewport, the header says the run is unstable and what to lower (screenshot
+    unstable.png), and Esc restores it bit-exactly."""
+    import bmesh
+    from windowed_actions import area_screenshot
+    bm = bmesh.new()
+    bmesh.ops.create_cube(bm, size=1.0)
+    bmesh.ops.triangulate(bm, faces=bm.faces[:])
+    min(bm.verts, key=lambda v: tuple(v.co)).co.z -= 4.3
+    spiked = helpers.object_from_bmesh(bm, "Spiked")
+    spiked.location = (0.0, -3.0, 0.0)
+    addon().settings_io.add_slot(spiked.gauss_stylization, {"preset": 'CUBE'})
+    spiked.gauss_stylization.admm_iterations = 20
+    hidden = [o for o in bpy.data.objects if o is not spiked]
+    for other in hidden:
+        other.hide_set(True)
+    with kit.override():
+        bpy.ops.view3d.view_selected()
+    push_undo("Spiked cube")
+    original = coords(spiked)
+    yield from live_run(1)
+    op = live_operator()
+    deadline = time.monotonic() + 60.0
+    while op is not None and "unstable" not in op.live.status_text() and time.monotonic() < deadline:
+        yield 0.1
+    text = op.live.status_text() if op else "no run"
+    yield 0.5  # the header redrawn with it
+    area_screenshot(os.path.join(kit.SHOTS, "unstable.png"))
+    check("a run whose steps run away says 'unstable: lower Lambda or ADMM Iterations'",
+          "unstable: lower Lambda or ADMM Iterations" in text, text)
+    check("... in the sidebar's box too", op is not None and any(
+        line[0] == "unstable: lower Lambda or ADMM Iterations" for line in op.live.panel_lines()))
+    now = coords(spiked).reshape(-1, 3)
+    size = np.ptp(original.reshape(-1, 3), axis=0).max()
+    check("... and the mesh on screen stays within a few sizes of where it was",
+          np.isfinite(now).all() and np.abs(now - original.reshape(-1, 3).mean(axis=0)).max() < 5 * size)
+    yield from kit.end_with('ESC', "Esc then restores it bit-exactly", "Spiked", original)
+    bpy.data.objects.remove(bpy.data.objects["Spiked"])
+    for other in hidden:
+        other.hide_set(False)
+    activate(bpy.data.objects[name])
+    with kit.override():
+        bpy.ops.view3d.view_selected()
+    push_undo("Spiked cube removed")
+
+
 # -- scenario -------------------------------------------------------------------------------
 
 def make_other(name):
@@ -303,7 +350,7 @@ def make_other(name):
 
 SCENARIOS = ("sigma_and_move_during_a_kept_run", "sigma_and_move_during_a_cancelled_run",
              "gizmo_and_header_clicks", "outliner_selection", "several_objects", "region_group_deleted",
-             "converged_then_sigma_resumes", "cubic_converges_accelerated")
+             "converged_then_sigma_resumes", "cubic_converges_accelerated", "unstable_run_says_so")
 
 
 def run_scenario(scenario_name, name, other):

@@ -258,7 +258,7 @@ class LiveRun:
                 text += "  |  " + HELD_BACK % session.solver.held_vertices
             elif converged:
                 text += "  |  " + CONVERGED
-            elif fraction is not None:
+            elif fraction is not None and not session.unstable:  # unstable: it does not settle
                 text += "  |  " + settling_text(fraction)
             if not converged and not held_back_ones and session.step_ms and self.tick_ms:
                 text += "  |  %.1f ms/step, %.1f ms/tick" % (session.step_ms[-1], self.tick_ms[-1])
@@ -322,7 +322,9 @@ class LiveRun:
             else:
                 lines.append(("%s: step %d" % (session.name, session.steps), 'MESH_DATA'))
                 fraction = self.settling(session)
-                if fraction is not None:
+                if session.unstable:
+                    lines.append((UNSTABLE, 'ERROR'))
+                elif fraction is not None:
                     lines.append((settling_text(fraction), 'BLANK1',
                                   settling_details(session.reldv, session.applied["tolerance"])))
         return lines
