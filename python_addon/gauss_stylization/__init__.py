@@ -21,10 +21,11 @@ MODULES = (
     "errors", "native",
     "settings.fields", "settings.schema", "settings.versioning", "settings.properties", "settings.settings_io",
     "settings.validation", "settings.paint_curve", "settings.styles",
-    "mesh.mesh_io", "mesh.crossings", "mesh.source", "mesh.cache_modifier", "mesh.output", "mesh.rest_store",
+    "mesh.mesh_io", "mesh.crossings", "mesh.source", "mesh.cache_modifier", "mesh.output", "mesh.recipe_store",
+    "mesh.rest_store",
     "view.viewport", "view.gpu_compat", "view.sidebar",
     "run.run_interface", "run.undo_guard", "run.runs", "run.progress", "run.solver_setup", "run.session", "run.targets",
-    "run.pin_targets", "run.live_run", "run.scripted_run", "run.modal_events",
+    "run.pin_targets", "run.live_run", "run.scripted_run", "run.replay", "run.modal_events",
     "handles.handles", "handles.handle_tool",
     "sphere.gauss_sphere", "sphere.directions", "sphere.orientation", "sphere.surface", "sphere.sphere_overlay",
     "sphere.sphere_editing", "sphere.style_from_data",
@@ -48,6 +49,7 @@ from . import bake, crossing_operators, handles, operators, run, settings, slot_
 # The modules artists' scripts import by name (docs/scripting.md, docs/baking.md), at the top as before.
 from .bake import pc2  # noqa: E402,F401
 from .mesh import mesh_io  # noqa: E402,F401
+from .run import replay  # noqa: E402,F401
 from .settings import settings_io, styles  # noqa: E402,F401
 
 classes = (settings.properties.classes + operators.classes + slot_operators.classes + crossing_operators.classes

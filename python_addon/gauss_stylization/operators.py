@@ -1,4 +1,4 @@
-"""Operators: Stylize (a live modal run, or scripted steps) and Reset.
+"""Operators: Stylize (a live modal run, or scripted steps), Reset and Replay.
 
 Stylize acts on the active object and every other selected mesh (targets.py).
 Invoked from the interface it runs live: the solvers are set up on a worker
@@ -17,7 +17,7 @@ from bpy.props import StringProperty
 
 from .errors import SettingsError
 from .mesh import rest_store
-from .run import modal_events, runs, scripted_run
+from .run import modal_events, replay, runs, scripted_run
 from .run.live_run import SAVED_NOTE, SAVED_REPORT, TICK_SECONDS, LiveRun
 from .run.progress import ProgressReport
 from .run.targets import TITLE, plan_objects, report_skipped, stylize_objects, stylize_problem
@@ -310,4 +310,31 @@ class OBJECT_OT_gauss_stylize_reset(bpy.types.Operator):
         return {'FINISHED'}
 
 
-classes = (OBJECT_OT_gauss_stylize, OBJECT_OT_gauss_stylize_reset)
+class OBJECT_OT_gauss_replay(bpy.types.Operator):
+    """Re-run this mesh's kept runs from the shape they started from, with the settings, painted weights and handle moves each had at every step"""
+    bl_idname = "object.gauss_replay"
+    bl_label = "Replay"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    @classmethod
+    def poll(cls, context):
+        problem = object_problem(context)
+        if problem is None and runs.is_running(context.active_object):
+            problem = "Stylization is already running on this object"
+        if problem is None:
+            problem = replay.problem(context.active_object)
+        return poll_result(cls, problem)
+
+    def execute(self, context):
+        obj = context.active_object
+        try:
+            with ProgressReport(context, TITLE) as report:
+                count, steps = replay.replay(obj, lambda fraction: report.update(fraction, "Replaying '%s'" % obj.name))
+        except SettingsError as exc:
+            self.report({'ERROR'}, str(exc))
+            return {'CANCELLED'}
+        self.report({'INFO'}, "Replayed %d kept run%s of '%s' (%d steps)" % (count, "s" * (count != 1), obj.name, steps))
+        return {'FINISHED'}
+
+
+classes = (OBJECT_OT_gauss_stylize, OBJECT_OT_gauss_stylize_reset, OBJECT_OT_gauss_replay)

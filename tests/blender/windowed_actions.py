@@ -150,3 +150,24 @@ def navigation_gizmo_buttons():
     rotate = (int(right - offset), int(top - offset))
     zoom = (int(right - 30 * scale * 0.75), int(top - offset * 2.1))
     return rotate, zoom
+
+
+def find_sidebar_button(idname):
+    """Generator: hover down the sidebar asking Blender which operator's button is under the mouse;
+    found["button"] = the middle of ``idname``'s button (None if not found)."""
+    area, regions = view3d()
+    region = regions['UI']
+    x = region.x + region.width // 2
+    found["button"] = None
+    for y in range(region.y + region.height - 10, region.y, -9):
+        window().event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
+        yield 0.02
+        bpy.context.window_manager.clipboard = ""
+        try:
+            with bpy.context.temp_override(window=window(), area=area, region=region):
+                bpy.ops.ui.copy_python_command_button()
+        except RuntimeError:
+            continue
+        if idname in bpy.context.window_manager.clipboard:
+            found["button"] = (x, y)
+            return

@@ -333,6 +333,41 @@ def unstable_run_says_so(name):
     push_undo("Spiked cube removed")
 
 
+def replay_button(name):
+    """A live run kept with Enter, then the mesh edited: the sidebar's Replay button (shown once a run
+    is kept) re-runs the kept run from the shape it started from, bit for bit, and one Ctrl+Z brings
+    the edit back."""
+    from windowed_actions import find_sidebar_button, found
+    obj = bpy.data.objects[name]
+    activate(obj)
+    original = coords(obj)
+    yield from live_run(15)
+    press('RET', *viewport_point())
+    yield from wait_stopped()
+    kept = coords(obj)
+    check("Enter keeps the live run", live_operator() is None and not np.array_equal(kept, original))
+    edited = kept.copy()
+    edited[:30] += 0.02  # an edit after the run
+    helpers.mesh_io.write_vertex_coords(obj.data, edited)
+    obj.data.update()
+    push_undo("Edit after the run")
+    yield 0.5
+    yield from find_sidebar_button("gauss_replay")
+    check("the sidebar shows Replay once a run is kept", found["button"] is not None)
+    if found["button"] is None:
+        return
+    press('LEFTMOUSE', *found["button"])
+    yield 1.0
+    check("a click on Replay gives the kept run's result bit for bit", np.array_equal(coords(obj), kept))
+    press('Z', *viewport_point(), ctrl=True)
+    yield 1.0
+    obj = bpy.data.objects[name]  # undo replaced the object's data
+    check("... and one Ctrl+Z brings the edit back", np.array_equal(coords(obj), edited))
+    helpers.mesh_io.write_vertex_coords(obj.data, original)
+    obj.data.update()
+    push_undo("Replay scenario undone")
+
+
 # -- scenario -------------------------------------------------------------------------------
 
 def make_other(name):
@@ -350,7 +385,7 @@ def make_other(name):
 
 SCENARIOS = ("sigma_and_move_during_a_kept_run", "sigma_and_move_during_a_cancelled_run",
              "gizmo_and_header_clicks", "outliner_selection", "several_objects", "region_group_deleted",
-             "converged_then_sigma_resumes", "cubic_converges_accelerated", "unstable_run_says_so")
+             "converged_then_sigma_resumes", "cubic_converges_accelerated", "unstable_run_says_so", "replay_button")
 
 
 def run_scenario(scenario_name, name, other):

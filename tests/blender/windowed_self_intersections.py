@@ -29,7 +29,8 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import windowed_kit as kit  # noqa: E402  (also sets up the paths and the window options)
 from windowed_kit import check, coords, end_with, live_operator, press, viewport_point, window  # noqa: E402
-from windowed_actions import area_screenshot, find_sidebar_field, found, type_into_field  # noqa: E402
+from windowed_actions import (  # noqa: E402
+    area_screenshot, find_sidebar_button, find_sidebar_field, found, type_into_field)
 import helpers  # noqa: E402
 from helpers import crossing_pairs  # noqa: E402
 
@@ -149,27 +150,6 @@ def live_run_on_spot(name, _prepared):
 
 
 # -- checking a print: Select Crossing Faces ------------------------------------------------
-
-def find_sidebar_button(idname):
-    """Generator: hover down the sidebar asking Blender which operator's button is under the mouse;
-    found["button"] = the middle of ``idname``'s button (None if not found)."""
-    region = kit.view3d()[1]['UI']
-    area = kit.view3d()[0]
-    x = region.x + region.width // 2
-    found["button"] = None
-    for y in range(region.y + region.height - 10, region.y, -9):
-        window().event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
-        yield 0.02
-        bpy.context.window_manager.clipboard = ""
-        try:
-            with bpy.context.temp_override(window=window(), area=area, region=region):
-                bpy.ops.ui.copy_python_command_button()
-        except RuntimeError:
-            continue
-        if idname in bpy.context.window_manager.clipboard:
-            found["button"] = (x, y)
-            return
-
 
 def crossing_faces_button(name, _prepared):
     """An artist checks a print before exporting it. Spot stylized at lambda 20 without the

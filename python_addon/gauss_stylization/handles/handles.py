@@ -112,7 +112,7 @@ class Handles:
         moved = self.targets.copy()
         moved[self.parts[part]] = targets
         try:
-            self.session.solver.set_pin_positions(moved)
+            self.session.move_pins(moved)
         except ValueError:
             return False
         self.targets = moved

@@ -9,7 +9,7 @@ and undo, and are read back as numbers only (no eval).
 import numpy as np
 
 from ..errors import SettingsError
-from . import mesh_io
+from . import mesh_io, recipe_store
 from .output import target_key
 
 COORDS = "_gauss_rest_co"
@@ -35,7 +35,8 @@ def _captured_coords(mesh):
 
 
 def restore(obj):
-    """Write the captured coordinates back where the last stylization wrote."""
+    """Write the captured coordinates back where the last stylization wrote; that run leaves the
+    mesh's recipe (recipe_store.py) if it was still there."""
     mesh = obj.data
     if not has_capture(mesh):
         raise SettingsError("'%s' has not been stylized yet; nothing to reset" % obj.name)
@@ -44,8 +45,12 @@ def restore(obj):
         key = target_key(obj)
         if key is None:
             raise SettingsError("The shape key 'Gauss Stylized' was removed; nothing to reset")
+        recipe_store.drop_last_run(mesh, mesh_io.read_key_coords(key))
         mesh_io.write_key_coords(key, coords)
     else:
+        now = np.empty((len(mesh.vertices), 3), np.float32)
+        mesh_io.read_base_coords(mesh, now)
+        recipe_store.drop_last_run(mesh, now)
         mesh_io.write_vertex_coords(mesh, coords)
         base = mesh_io.base_key(mesh)
         if base is not None:

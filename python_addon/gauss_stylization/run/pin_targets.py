@@ -44,6 +44,6 @@ def apply_targets_json(sessions, text):
             targets = np.asarray(targets, np.float64).reshape(-1, 3)
             if len(targets) != len(session.solver.pinned):
                 raise ValueError("%d targets for %d pinned vertices" % (len(targets), len(session.solver.pinned)))
-            session.solver.set_pin_positions(targets)
+            session.move_pins(targets)
         except (ValueError, TypeError) as exc:
             raise SettingsError("Pin targets of '%s': %s" % (name, exc)) from exc

@@ -21,10 +21,10 @@ import numpy as np
 
 from .. import native
 from ..errors import SettingsError
-from ..mesh import mesh_io, output, rest_store, source as sources
+from ..mesh import mesh_io, output, recipe_store, rest_store, source as sources
 from ..settings import paint_curve, schema, styles
 from ..settings.fields import Live, changes
-from ..settings.settings_io import add_slot, to_dict
+from ..settings.settings_io import add_slot, apply_dict, to_dict
 from ..settings.validation import check_coordinates, check_object, check_pins, check_settings
 from .solver_setup import PinsSetup
 
@@ -73,8 +73,10 @@ class Plan:
     its target (New Object output adopts it); a plan that gets no Session is ``release()``d.
     """
 
-    def __init__(self, obj, source=None, target=None):
+    def __init__(self, obj, source=None, target=None, weights=None):
+        """weights: {group: (#V,) float32} that replace the object's own (a replayed run's, replay.py)."""
         self.obj = obj
+        self._weights = weights
         self.name = obj.name  # for messages, also once the object is gone
         self.mesh = obj.data
         self.gauss_core = native.core()
@@ -95,7 +97,7 @@ class Plan:
         if self.source.evaluated:
             self.base_coords = np.empty((len(self.mesh.vertices), 3), np.float32)
             mesh_io.read_base_coords(self.mesh, self.base_coords)
-        self.weights = self.source.weights
+        self.weights = dict(self.source.weights, **self._weights) if self._weights else self.source.weights
         check_settings(obj, settings, self.weights)
         # The settings the solver runs with; a tick compares them with the panel's to find
         # what changed, and each change does what its field's Live says (schema.py).
@@ -202,6 +204,9 @@ class Session:
         self.pin_changes = 0
         self._mode = self.obj.mode  # the object's mode at the last tick: a return from Weight Paint re-reads weights
         self._pin_group_before = None  # applied["pin_group"] before it
+        # What Replay needs of this run (recipe_store.py): how it started, and each change at its step.
+        self.recipe = {"settings": self.applied, "weights": self._used_weights(self.applied),
+                       "output": self.target.kind, "use_modifiers": plan.source.evaluated, "events": []}
         self.target.prepare()  # first change to the object: everything above succeeded
 
     # -- running ---------------------------------------------------------------
@@ -212,15 +217,17 @@ class Session:
         setup = self.pins_setup
         return setup if setup is not None and not setup.done else None
 
-    def sync_settings(self):
+    def sync_settings(self, repainted=None):
         """Send changed settings to the solver. Returns None, or why it cannot run now.
-        Not while ``busy``."""
+        Not while ``busy``. repainted: what new weights in self.weights change (a replayed repaint;
+        default: what the artist's Weight Paint strokes changed, _repainted())."""
         problem = self._finish_pins()
         if problem is not None:
             return problem
         settings = self.obj.gauss_stylization
         wanted = to_dict(settings)
-        changed = changes(schema.OBJECT, self.applied, wanted) | self._repainted(settings)
+        repainted = self._repainted(settings) if repainted is None else repainted
+        changed = changes(schema.OBJECT, self.applied, wanted) | repainted
         if changed or self._group_deleted():
             try:
                 check_settings(self.obj, settings, self.weights)
@@ -229,8 +236,37 @@ class Session:
                 return str(exc)
             except (ValueError, TypeError) as exc:
                 return "The solver rejected a setting: %s" % exc
+            event = {"step": self.steps, "settings": wanted}
+            if repainted:
+                event.update(repainted=sorted(kind.name for kind in repainted), weights=self._used_weights(wanted))
+            self.recipe["events"].append(event)
         self.applied = wanted
         return None
+
+    def move_pins(self, targets):
+        """New targets ((#P,3), object space) for the pinned vertices (a handle's drag, a script's pin
+        targets), without re-factoring. Raises ValueError if the solver refuses them."""
+        self.solver.set_pin_positions(targets)
+        self.recipe["events"].append({"step": self.steps, "pins": recipe_store.pack(targets, np.float64)})
+
+    def replay_event(self, event):
+        """Make a recorded change (recipe_store.py) again, as the run it was recorded in made it."""
+        if "pins" in event:
+            self.move_pins(recipe_store.unpack(event["pins"]))
+            return
+        apply_dict(self.obj.gauss_stylization, event["settings"])
+        repainted = set()
+        if "weights" in event:
+            self.weights = dict(self.weights, **{g: recipe_store.unpack(w) for g, w in event["weights"].items()})
+            repainted = {Live[name] for name in event["repainted"]}
+        problem = self.sync_settings(repainted)
+        if problem is not None:
+            raise SettingsError("Replay of '%s' stopped at step %d: %s" % (self.name, self.steps, problem))
+
+    def _used_weights(self, applied):
+        """The weights of the groups ``applied`` (settings_io.to_dict) reads: Regions and the Pin Group."""
+        groups = {slot["vertex_group"] for slot in applied["styles"]} | {applied["pin_group"]}
+        return {g: recipe_store.pack(self.weights[g], np.float32) for g in sorted(groups) if g in self.weights}
 
     @property
     def painting(self):
@@ -404,6 +440,22 @@ class Session:
         self._stop_pins()  # a Pin Group change still being prepared never reached the result
         self.target.keep()
         rest_store.capture(*self.target.rest)
+        self._record()
+
+    def _record(self):
+        """Add this kept run to the mesh's recipe (recipe_store.py). Replay covers the Mesh and Shape
+        Key outputs of the base mesh: a run with Use Modifiers or a New Object output writes where a
+        replay from the rest shape cannot follow, so it ends the recipe (New Object leaves the mesh
+        as it was, and its recipe with it)."""
+        if self.target.kind == output.NewObjectTarget.kind or self.steps == 0:
+            return
+        if self.recipe["use_modifiers"]:
+            recipe_store.save(self.mesh, None)
+            return
+        start = self.arrays.coords
+        recipe_store.add_run(self.mesh, start, dict(
+            self.recipe, steps=self.steps, start_fingerprint=recipe_store.fingerprint(start),
+            result_fingerprint=recipe_store.fingerprint(self.result)))
 
     def cancel(self):
         """Put back exactly what was there before the run, as far as it still exists.
