@@ -128,3 +128,31 @@ def test_the_recipe_is_saved_with_the_file_and_replays_after_reopening(addon, tm
     obj = bpy.data.objects[name]
     assert [run["steps"] for run in addon.run.replay.recipe(obj)["runs"]] == [6]
     assert np.array_equal(_replay(obj), kept)
+
+
+def test_a_region_repainted_mid_run_replays_bit_for_bit(addon):
+    # The artist paints the Region in Weight Paint during the run; the recipe holds the new weights at
+    # the step the run read them, and the weights the object has after the run are not the replay's.
+    obj = _suzanne()
+    rest = helpers.coords(obj)
+    helpers.add_group(obj, "Paint", np.flatnonzero(rest[:, 2] > 0.0), weight=0.3)
+    obj.gauss_stylization.styles[0].vertex_group = "Paint"
+    live = helpers.live_run([obj])
+    try:
+        for _ in range(6):
+            live.tick(budget=1e9)
+        bpy.ops.object.mode_set(mode='WEIGHT_PAINT')
+        obj.vertex_groups["Paint"].add(list(range(len(rest))), 0.9, 'REPLACE')  # the strokes
+        live.tick(budget=1e9)
+        bpy.ops.object.mode_set(mode='OBJECT')
+        for _ in range(10):
+            live.tick(budget=1e9)
+    finally:
+        if obj.mode != 'OBJECT':
+            bpy.ops.object.mode_set(mode='OBJECT')
+    live.keep()
+    kept = helpers.coords(obj)
+    events = addon.run.replay.recipe(obj)["runs"][0]["events"]
+    assert [(e["step"], e["repainted"]) for e in events if "repainted" in e] == [(6, ["REGIONS"])]
+    obj.vertex_groups["Paint"].add(list(range(len(rest))), 0.1, 'REPLACE')  # painted again since
+    assert np.array_equal(_replay(obj), kept)

@@ -246,13 +246,20 @@ class Session:
     def move_pins(self, targets):
         """New targets ((#P,3), object space) for the pinned vertices (a handle's drag, a script's pin
         targets), without re-factoring. Raises ValueError if the solver refuses them."""
+        before = np.asarray(self.solver.pin_positions, np.float64)
         self.solver.set_pin_positions(targets)
-        self.recipe["events"].append({"step": self.steps, "pins": recipe_store.pack(targets, np.float64)})
+        # Only the rows that moved (a handle moves its part's pins): a long drag stays small in the recipe.
+        now = np.asarray(self.solver.pin_positions, np.float64)
+        rows = np.flatnonzero((now != before).any(axis=1)) if len(before) == len(now) else np.arange(len(now))
+        self.recipe["events"].append({"step": self.steps, "rows": recipe_store.pack(rows, np.int64),
+                                      "pins": recipe_store.pack(now[rows], np.float64)})
 
     def replay_event(self, event):
         """Make a recorded change (recipe_store.py) again, as the run it was recorded in made it."""
         if "pins" in event:
-            self.move_pins(recipe_store.unpack(event["pins"]))
+            targets = np.array(self.solver.pin_positions, np.float64)
+            targets[recipe_store.unpack(event["rows"])] = recipe_store.unpack(event["pins"])
+            self.move_pins(targets)
             return
         apply_dict(self.obj.gauss_stylization, event["settings"])
         repainted = set()
