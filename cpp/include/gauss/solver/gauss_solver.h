@@ -215,10 +215,11 @@ class GaussSolver {
   // the lambda w e* pull), plain ARAP's over the faces, or the cubic method's (per vertex).
   enum class Rhs { gauss, arap, cubic };
   void assemble_rhs(Rhs terms);
-  // The Gauss step's guard against running away (docs/robustness.md, "Negative cotangent weights"):
-  // reach_ is how far from the origin (normalized frame, max norm) the rest mesh, the pin targets and
-  // the caller's last set_vertices() lie; a step whose result lies beyond kRunawayReach times that is
-  // redone as a plain ARAP step, which does not read the iterate.
+  // The Gauss step's guard against running away (docs/robustness.md, "Negative cotangent weights"): the
+  // reach box (centre reach_centre_, half its longest side reach_; normalized frame) holds the used rest
+  // vertices, the pin targets and the caller's last set_vertices(); a step whose result lies farther
+  // than kRunawayReach half-sizes from its centre is redone as a plain ARAP step, which does not read
+  // the iterate.
   void update_reach();
   bool ran_away() const;
   // The cubic method's per-vertex strength and orientation from styles_ and the faces' styles.
@@ -298,7 +299,8 @@ class GaussSolver {
   std::unique_ptr<SelfIntersectionGuard> guard_;     // while avoid_self_intersections is on
   std::vector<Eigen::Vector3d> safe_;                // #V while it is on: X before the step
   double denied_reldv_ = 0;                          // the last step's move the guard took back, as reldV
-  double reach_ = 1.0;                                // update_reach()
+  Eigen::Vector3d reach_centre_ = Eigen::Vector3d::Zero();  // update_reach()
+  double reach_ = 1.0;
   int runaway_steps_ = 0;                            // steps redone as plain ARAP since the set-up or reset
 
   // Per-step buffers (allocated once).
