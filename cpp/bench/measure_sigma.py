@@ -50,7 +50,8 @@ def edge_weights(V, F):
 
 def uphill_newton(rest, U, F, style, lam):
     """(#F,) bool: faces whose first-round normal step (Eqs. 21-22; u = 0, e* = e) is not a descent
-    direction at the vertices U, so newton_normal falls back to its small gradient step."""
+    direction at the vertices U, so newton_normal falls back to its small gradient step. Without
+    Resolution Independent's per-face scaling of lambda: with --resolution-independent, an estimate."""
     scale = (rest.max(axis=0) - rest.min(axis=0)).max()  # the solver's normalized frame
     W = lam * edge_weights(rest / scale, F)
     X = np.asarray(U) / scale
