@@ -14,6 +14,9 @@
 // in one step. --resolution-independent weights each face's preference by its area
 // (settings::resolution_independent, docs/resolution.md); --reference-face-area sets its reference
 // density (default settings::reference_face_area), to measure that choice.
+// A preset's name may be written with '-' for '_' (--style sheet-metal). Every run prints
+// developability: IN -> OUT (mesh/developability.h) and flat_vertices_share: IN -> OUT, the share of
+// interior vertices whose angle defect is below 0.01 rad (mesh/flat_vertex_share.h).
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -27,6 +30,8 @@
 
 #include "gauss/collision/self_intersection.h"
 #include "gauss/mesh/alignment_share.h"
+#include "gauss/mesh/developability.h"
+#include "gauss/mesh/flat_vertex_share.h"
 #include "gauss/solver/gauss_solver.h"
 #include "gauss/mesh/mesh_io.h"
 #include "gauss/util/parallel.h"
@@ -88,7 +93,7 @@ int main(int argc, char** argv) {
     if (i + 1 >= argc) return usage();
     const char* v = argv[++i];
     if (a == "--method") method_name = v;
-    else if (a == "--style") style = v;
+    else if (a == "--style") style = v, std::replace(style.begin(), style.end(), '-', '_');
     else if (a == "--lambda") lambda = std::atof(v);
     else if (a == "--sigma") sigma = std::atof(v);
     else if (a == "--mu") mu = std::atof(v);
@@ -192,6 +197,12 @@ int main(int argc, char** argv) {
       const double after = gauss::alignment_share(result.data(), mesh.F.data(), mesh.num_faces(), share_normals);
       std::printf("axis_share_10deg: %.4f -> %.4f\n", before, after);
     }
+    std::printf("developability: %.4g -> %.4g\n",
+                gauss::developability(mesh.V.data(), mesh.num_vertices(), mesh.F.data(), mesh.num_faces()),
+                gauss::developability(result.data(), mesh.num_vertices(), mesh.F.data(), mesh.num_faces()));
+    std::printf("flat_vertices_share: %.4f -> %.4f\n",
+                gauss::flat_vertex_share(mesh.V.data(), mesh.num_vertices(), mesh.F.data(), mesh.num_faces()),
+                gauss::flat_vertex_share(result.data(), mesh.num_vertices(), mesh.F.data(), mesh.num_faces()));
     std::vector<std::array<int, 3>> triangles;  // the input's faces without a repeated corner
     for (int f = 0; f < mesh.num_faces(); ++f) {
       const int64_t* t = &mesh.F[3 * static_cast<size_t>(f)];
