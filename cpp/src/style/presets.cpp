@@ -93,6 +93,7 @@ const Preset kPresets[] = {
      [] {
        StyleParams p;
        p.kind = StyleKind::developable;
+       p.sigma = settings::sheet_metal_sigma;
        return p;
      }},
 };

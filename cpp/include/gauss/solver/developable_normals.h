@@ -5,11 +5,13 @@
 // curve of the sphere with no spread across it).
 //
 // At each vertex v the ruling direction a_v is the eigenvector of the smallest eigenvalue of
-// sum area n n^T over the faces around v: the direction the star's normals spread least along. A
+// sum area n n^T over v's two rings of faces (each face around v adds the stars of its three corners;
+// one ring alone gave rulings too noisy to agree between neighbours, docs/styles.md#sheet-metal):
+// the direction the normals there spread least along. A
 // face's preferred normal is its normal with the part along the ruling of each of its three corners
 // removed (their mean, normalized): each star's normals are pulled onto one great circle, which is
 // what makes it developable. On a flat or rolled patch n_f has no part along any ruling, so the face
-// prefers its own normal. Three passes over faces and vertices; no allocation.
+// prefers its own normal. Four passes over faces and vertices; no allocation.
 #include <Eigen/Core>
 #include <vector>
 
