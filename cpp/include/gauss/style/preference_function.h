@@ -24,7 +24,6 @@ namespace gauss {
 enum class StyleKind { directions, developable };
 
 struct StyleParams {
-  StyleKind kind = StyleKind::directions;
   // Preferred unit normals before rotation (#K by 3); may be empty if rings are given; empty for a
   // developable style.
   std::vector<Eigen::Vector3d> normals;
@@ -36,6 +35,7 @@ struct StyleParams {
   double sigma = settings::sigma.default_value;  // concentration of every term
   double mu = settings::mu.default_value;        // weight of -mu * g in the energy
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // orientation on the Gauss sphere
+  StyleKind kind = StyleKind::directions;  // last, so that aggregate initializations keep their order
 };
 
 // g with its weights solved so that g(n_k) = 1 at every discrete normal (Eq. 10) and g = 1 on every
