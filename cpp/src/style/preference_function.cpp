@@ -151,8 +151,15 @@ void PreferenceFunction::evaluate(const Eigen::Vector3d& x, const Eigen::Vector3
 void PreferenceFunction::evaluate(const Eigen::Vector3d& x, double& g, Eigen::Vector3d& grad,
                                   Eigen::Matrix3d& hess) const {
   if (kind_ == StyleKind::developable) {
+    // The bump around x's own direction: g = exp(sigma (|x| - 1)), with its exact derivatives.
     const double len = x.norm();
-    evaluate(x, len > 0 && std::isfinite(len) ? Eigen::Vector3d(x / len) : x, g, grad, hess);
+    if (!(len > 0) || !std::isfinite(len)) {
+      evaluate(x, x, g, grad, hess);  // NaN or zero in, NaN or a plain value out, as the other styles
+      return;
+    }
+    const Eigen::Vector3d u = x / len;
+    evaluate(x, u, g, grad, hess);
+    hess.noalias() += (sigma_ * g / len) * (Eigen::Matrix3d::Identity() - u * u.transpose());
     return;
   }
   const double s = sigma_;

@@ -54,8 +54,8 @@ class PreferenceFunction {
 
   double value(const Eigen::Vector3d& x) const;
   // Value, gradient (Eq. 11, 14) and Hessian (Eq. 12, 15) of g at x in one pass. A developable style
-  // has no fixed directions: its g is the bump around x itself (g = 1), what a face on a flat patch
-  // is offered.
+  // has no fixed directions: its g is the bump around x's own direction, exp(sigma (|x| - 1)) (1 on the
+  // sphere), what a face on a flat patch is offered.
   void evaluate(const Eigen::Vector3d& x, double& g, Eigen::Vector3d& grad,
                 Eigen::Matrix3d& hess) const;
   // The same for a face whose neighbourhood prefers the unit normal `preferred`: a developable style's
