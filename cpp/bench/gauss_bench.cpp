@@ -14,6 +14,10 @@
 // in one step. --resolution-independent weights each face's preference by its area
 // (settings::resolution_independent, docs/resolution.md); --reference-face-area sets its reference
 // density (default settings::reference_face_area), to measure that choice.
+// A preset's name may be written with '-' for '_' (--style sheet-metal); sheet_metal runs at
+// settings::sheet_metal_lambda unless --lambda says otherwise. Every run prints
+// developability: IN -> OUT (mesh/developability.h) and flat_vertices_share: IN -> OUT, the share of
+// interior vertices whose angle defect is below 0.01 rad (mesh/flat_vertex_share.h).
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -27,6 +31,8 @@
 
 #include "gauss/collision/self_intersection.h"
 #include "gauss/mesh/alignment_share.h"
+#include "gauss/mesh/developability.h"
+#include "gauss/mesh/flat_vertex_share.h"
 #include "gauss/solver/gauss_solver.h"
 #include "gauss/mesh/mesh_io.h"
 #include "gauss/util/parallel.h"
@@ -67,7 +73,8 @@ int main(int argc, char** argv) {
   std::string mesh_path = argv[1], style = gauss::settings::default_preset, out_path;
   std::string method_name = gauss::settings::default_method;
   namespace settings = gauss::settings;
-  double lambda = -1, sigma = settings::sigma.default_value, mu = settings::mu.default_value;  // lambda < 0: the method's default
+  double lambda = -1, sigma = 0, mu = settings::mu.default_value;  // lambda < 0: the method's default
+  bool sigma_given = false;  // otherwise the preset's
   int steps = -1, admm = static_cast<int>(settings::admm_iterations.default_value), threads = 0;
   bool until_converged = false;  // --until given; otherwise exactly `steps` steps
   double until = 0;
@@ -88,9 +95,9 @@ int main(int argc, char** argv) {
     if (i + 1 >= argc) return usage();
     const char* v = argv[++i];
     if (a == "--method") method_name = v;
-    else if (a == "--style") style = v;
+    else if (a == "--style") style = v, std::replace(style.begin(), style.end(), '-', '_');
     else if (a == "--lambda") lambda = std::atof(v);
-    else if (a == "--sigma") sigma = std::atof(v);
+    else if (a == "--sigma") sigma = std::atof(v), sigma_given = true;
     else if (a == "--mu") mu = std::atof(v);
     else if (a == "--steps") steps = std::atoi(v);
     else if (a == "--admm") admm = std::atoi(v);
@@ -108,7 +115,10 @@ int main(int argc, char** argv) {
   if (method_index < 0) return usage();
   const gauss::Method method = static_cast<gauss::Method>(method_index);
   const bool cubic = method == gauss::Method::cubic;
-  if (lambda < 0) lambda = cubic ? settings::cubic_lambda.default_value : settings::lambda.default_value;
+  const bool sheet_metal = style == "sheet_metal";
+  if (lambda < 0)
+    lambda = cubic ? settings::cubic_lambda.default_value
+                   : sheet_metal ? settings::sheet_metal_lambda : settings::lambda.default_value;
   if (steps < 0) steps = until_converged ? kDefaultCap : kDefaultSteps;
   try {
     if (until_converged) settings::tolerance.check(until);
@@ -118,7 +128,7 @@ int main(int argc, char** argv) {
     gauss::TriangleMesh mesh = gauss::read_mesh(mesh_path);
     std::printf("mesh: %s (%d vertices, %d faces)\n", mesh_path.c_str(), mesh.num_vertices(), mesh.num_faces());
     gauss::StyleParams params = gauss::preset_style(style);
-    params.sigma = sigma;
+    if (sigma_given) params.sigma = sigma;
     params.mu = mu;
     gauss::PreferenceFunction g(params);
 
@@ -192,6 +202,12 @@ int main(int argc, char** argv) {
       const double after = gauss::alignment_share(result.data(), mesh.F.data(), mesh.num_faces(), share_normals);
       std::printf("axis_share_10deg: %.4f -> %.4f\n", before, after);
     }
+    std::printf("developability: %.4g -> %.4g\n",
+                gauss::developability(mesh.V.data(), mesh.num_vertices(), mesh.F.data(), mesh.num_faces()),
+                gauss::developability(result.data(), mesh.num_vertices(), mesh.F.data(), mesh.num_faces()));
+    std::printf("flat_vertices_share: %.4f -> %.4f\n",
+                gauss::flat_vertex_share(mesh.V.data(), mesh.num_vertices(), mesh.F.data(), mesh.num_faces()),
+                gauss::flat_vertex_share(result.data(), mesh.num_vertices(), mesh.F.data(), mesh.num_faces()));
     std::vector<std::array<int, 3>> triangles;  // the input's faces without a repeated corner
     for (int f = 0; f < mesh.num_faces(); ++f) {
       const int64_t* t = &mesh.F[3 * static_cast<size_t>(f)];

@@ -1,6 +1,6 @@
 #pragma once
 // What gauss_core exports from the solver's tables (settings.h, presets.h): PRESETS, METHODS, DEFAULTS,
-// LIMITS and SIZE_LIMITS, and the reading of a method's name. For the Python module only.
+// LIMITS, SIZE_LIMITS and PRESET_LAMBDA, and the reading of a method's name. For the Python module only.
 #include <pybind11/pybind11.h>
 
 #include <algorithm>
@@ -54,6 +54,10 @@ inline void export_facts(py::module_& m) {
   sizes["normals"] = settings::max_style_normals;
   sizes["rings"] = settings::max_style_rings;
   m.attr("SIZE_LIMITS") = sizes;
+  // The lambda a preset is meant to run at where it differs from DEFAULTS['lam'] (docs/styles.md).
+  py::dict preset_lambda;
+  preset_lambda["sheet_metal"] = settings::sheet_metal_lambda;
+  m.attr("PRESET_LAMBDA") = preset_lambda;
 }
 
 }  // namespace gauss_python

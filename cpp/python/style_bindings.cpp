@@ -101,19 +101,25 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
            py::arg("normals") = py::none(), py::kw_only(), py::arg("sigma") = settings::sigma.default_value,
            py::arg("mu") = settings::mu.default_value, py::arg("rotation") = py::none(), py::arg("axis") = py::none(),
            py::arg("ring_offsets") = py::none(), py::arg("axis_contribution") = settings::axis_contribution.default_value)
-      .def_static("preset", [](const std::string& name, double sigma, double mu, const py::object& rotation,
+      .def_static("preset", [](const std::string& name, const py::object& sigma, double mu, const py::object& rotation,
                                double axis_contribution) {
              StyleParams p = gauss::preset_style(name);
-             p.sigma = sigma;
+             if (!sigma.is_none()) p.sigma = sigma.cast<double>();
              p.mu = mu;
              p.rotation = read_rotation(rotation);
              p.axis_contribution = axis_contribution;
              return make_style(name, p);
            },
-           py::arg("name"), py::arg("sigma") = settings::sigma.default_value, py::arg("mu") = settings::mu.default_value,
+           py::arg("name"), py::arg("sigma") = py::none(), py::arg("mu") = settings::mu.default_value,
            py::arg("rotation") = py::none(), py::arg("axis_contribution") = settings::axis_contribution.default_value,
-           "A named style (see PRESETS) with the given sigma, mu, orientation and axis contribution.")
+           "A named style (see PRESETS) with the given sigma (None: the preset's, DEFAULTS['sigma'] for all but\n"
+           "sheet_metal), mu, orientation and axis contribution.")
       .def_property_readonly("name", [](const Style& s) { return s.name; }, "Preset name or 'custom'.")
+      .def_property_readonly("kind", [](const Style& s) { return s.g->developable() ? "developable" : "directions"; },
+                             "'directions': the style prefers its normals and rings. 'developable' (the sheet_metal\n"
+                             "preset): it has none; each face prefers its own normal turned onto the great circle of\n"
+                             "its neighbours' normals, worked out by the solver before each step, so the surface bends\n"
+                             "one way at a time; value() is then the bump around x itself (1 everywhere).")
       .def_property_readonly("normals", [](const Style& s) { return to_array(s.g->normals()); },
                              "(K, 3) preferred normals after rotation.")
       .def_property_readonly("axis", [](const Style& s) { return to_array({s.g->axis()}).reshape({3}); },

@@ -35,3 +35,23 @@ def style_share(V, F, style, degrees=10.0, face_mask=None):
     """aligned_share against a gauss_core.Style's preferred normals and rings."""
     rings = [(style.axis, offset) for offset in style.ring_offsets]
     return aligned_share(V, F, style.normals, degrees, face_mask, rings)
+
+
+def developability(V, F):
+    """Mean over the vertices faces use of the smallest eigenvalue of sum A n n^T / sum A over the
+    vertex's faces: 0 where the normals around a vertex lie on one great circle (a developable
+    surface), up to 1/3. The same measure as cpp/include/gauss/mesh/developability.h."""
+    F = np.asarray(F)
+    n, area = face_normals(V, F)
+    keep = area > 0
+    n, area, F = n[keep], area[keep], F[keep]
+    nV = len(V)
+    moment = np.zeros((nV, 3, 3))
+    total = np.zeros(nV)
+    nn = area[:, None, None] * n[:, :, None] * n[:, None, :]
+    for k in range(3):
+        np.add.at(moment, F[:, k], nn)
+        np.add.at(total, F[:, k], area)
+    used = total > 0
+    smallest = np.linalg.eigvalsh(moment[used] / total[used][:, None, None])[:, 0]
+    return float(np.maximum(smallest, 0.0).mean())

@@ -14,7 +14,11 @@ using Eigen::Vector3d;
 
 namespace {
 
-bool is_discrete(const std::string& name) { return preset_style(name).ring_offsets.empty(); }
+// Fixed directions and no rings (the developable sheet_metal has neither).
+bool is_discrete(const std::string& name) {
+  const gauss::StyleParams p = preset_style(name);
+  return p.ring_offsets.empty() && p.kind == gauss::StyleKind::directions;
+}
 
 Vector3d some_unit(int i) {
   return Vector3d(std::sin(1.3 * i + 0.2), std::cos(0.7 * i + 1.1), std::sin(2.1 * i + 0.5)).normalized();

@@ -81,7 +81,7 @@ TEST(Presets, TheRegistryOrderIsUnchanged) {
   const std::vector<std::string> expected = {
       "cube",           "tetrahedron",      "octahedron",        "dodecahedron",     "icosahedron",
       "square_pyramid", "truncated_pyramid", "triangular_prism", "hexagonal_prism",  "plane",
-      "cylinder",       "cone",             "double_cone"};
+      "cylinder",       "cone",             "double_cone",       "sheet_metal"};
   EXPECT_EQ(gauss::preset_names(), expected);
   for (const std::string& name : gauss::preset_names()) EXPECT_NO_THROW(gauss::preset_style(name)) << name;
   gauss_test::expect_refused([] { gauss::preset_style("sphere"); }, "valid presets: cube, tetrahedron");

@@ -93,6 +93,28 @@ TEST(StepAllocations, StepsDoNotAllocate) {
   EXPECT_EQ(g_allocations.load() - before_resolution_gauss, 0);
 }
 
+TEST(StepAllocations, SheetMetalStepsDoNotAllocate) {
+  // The developable style's preferred normals are made before every Gauss step and by g_energy():
+  // choosing the style sizes their buffers; the steps (one style alone, and blended with another on
+  // some faces) and the read-out do not allocate. Large enough for the parallel paths.
+  const gauss::TriangleMesh m = gauss_test::icosphere(5);
+  gauss::GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces());
+  s.set_styles({gauss::PreferenceFunction(gauss::preset_style("sheet_metal")),
+                gauss::PreferenceFunction(gauss::preset_style("cube"))});
+  for (int i = 0; i < 3; ++i) s.step();
+  const long before = g_allocations.load();
+  for (int i = 0; i < 5; ++i) s.step();
+  EXPECT_GT(s.g_energy(), 0.0);
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  std::vector<double> w(2 * static_cast<size_t>(m.num_faces()));
+  for (int f = 0; f < m.num_faces(); ++f) w[2 * f] = 1.0, w[2 * f + 1] = f % 2 ? 0.5 : 0.0;
+  s.set_face_weights(w.data(), m.num_faces(), 2);
+  for (int i = 0; i < 3; ++i) s.step();
+  const long before_blend = g_allocations.load();
+  for (int i = 0; i < 5; ++i) s.step();
+  EXPECT_EQ(g_allocations.load() - before_blend, 0);
+}
+
 TEST(StepAllocations, CholeskySolveDoesNotAllocate) {
   // Large enough for nested dissection, both parts on threads and the sums owed to the rows above
   // the cut (a step's solve on the 60,002-vertex cube).

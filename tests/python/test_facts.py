@@ -45,7 +45,7 @@ def test_the_preset_registry_order_is_unchanged():
     assert gauss_core.PRESETS == (
         "cube", "tetrahedron", "octahedron", "dodecahedron", "icosahedron", "square_pyramid",
         "truncated_pyramid", "triangular_prism", "hexagonal_prism", "plane", "cylinder", "cone",
-        "double_cone")
+        "double_cone", "sheet_metal")
 
 
 def test_core_facts_json_written_by_the_build_equals_the_exports():

@@ -17,7 +17,13 @@ def test_presets_are_all_constructible_and_normalized():
             "double_cone"} <= set(gauss_core.PRESETS)
     for name in gauss_core.PRESETS:
         s = gauss_core.Style.preset(name)
-        assert s.name == name and s.sigma == 4.0 and s.mu == 1.0
+        assert s.name == name and s.mu == 1.0
+        if s.kind == "developable":  # sheet_metal: its own sigma, no directions, g = 1 at every x
+            assert name == "sheet_metal" and s.sigma > gauss_core.DEFAULTS["sigma"]
+            assert len(s.normals) == 0 and not s.ring_offsets
+            np.testing.assert_allclose(s.value([[0, 0, 1], [0.6, 0.8, 0]]), 1.0, atol=1e-12)
+            continue
+        assert s.sigma == gauss_core.DEFAULTS["sigma"]
         if not s.ring_offsets:
             np.testing.assert_allclose(s.value(s.normals), 1.0, atol=1e-9)
 

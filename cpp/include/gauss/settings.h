@@ -157,6 +157,13 @@ inline constexpr int max_style_rings = 256;
 // The style every face has until set_styles() says otherwise, and the add-on's default slot preset.
 inline constexpr const char* default_preset = "cube";
 
+// The Sheet Metal style (preset "sheet_metal", developable_normals.h) turns each normal by a small angle
+// onto its neighbourhood's great circle, a far weaker pull than a turn to a fixed direction: it needs a
+// sharper bump (its preset's sigma) and a much stronger lambda (what gauss_bench runs it at) to unbend a
+// mesh. Measured: docs/styles.md#sheet-metal.
+inline constexpr double sheet_metal_sigma = 16.0;
+inline constexpr double sheet_metal_lambda = 1000.0;
+
 // Limits on the input rather than settings (no default): beyond them the arithmetic would overflow.
 // Coordinates of vertices that faces use: within +-max_coordinate (near 1e308 the output
 // x * scale + center overflows to infinity).

@@ -212,7 +212,7 @@ void GaussSolver::face_pass() {
       const double lam_f = lam * face_coupling_[f];  // == lam when resolution_independent is off
       const double lw[3] = {lam_f * slot_edge_weight_[f][0], lam_f * slot_edge_weight_[f][1],
                             lam_f * slot_edge_weight_[f][2]};
-      normal_star_[f] = normal_update(s, c / len, e, lw, zero);
+      normal_star_[f] = normal_update(f, s, c / len, e, lw, zero);
     }
     Matrix3d cov = e[0] * slot_rest_[f][0].transpose();
     cov.noalias() += e[1] * slot_rest_[f][1].transpose();
@@ -221,12 +221,17 @@ void GaussSolver::face_pass() {
   });
 }
 
-Vector3d GaussSolver::normal_update(int s, const Vector3d& n, const Vector3d* es, const double* lw,
+Vector3d GaussSolver::normal_update(int f, int s, const Vector3d& n, const Vector3d* es, const double* lw,
                                     const double* u) const {
-  if (s >= 0) return newton_normal(styles_[s], n, es, lw, u);
+  const Vector3d* preferred = any_developable_ ? &preferred_normal_[f] : nullptr;
+  if (s >= 0) return newton_normal(styles_[s], n, es, lw, u, preferred);
   const int b = -2 - s;
   return newton_normal(styles_.data(), &blend_shares_[blend_start_[b]], blend_start_[b + 1] - blend_start_[b], n, es,
-                       lw, u);
+                       lw, u, preferred);
+}
+
+void GaussSolver::update_preferred_normals() const {
+  if (any_developable_) developable_normals(topo_, X_, vertex_moment_, vertex_ruling_, preferred_normal_);
 }
 
 void GaussSolver::fit_rotations() {
@@ -280,7 +285,7 @@ void GaussSolver::admm_round(bool first_round) {
       const double lam_f = lam * face_coupling_[f];
       const double lw[3] = {lam_f * slot_edge_weight_[f][0], lam_f * slot_edge_weight_[f][1],
                             lam_f * slot_edge_weight_[f][2]};
-      normal_star_[f] = normal_update(face_style_[f], n, es, lw, dual_[f].data());
+      normal_star_[f] = normal_update(f, face_style_[f], n, es, lw, dual_[f].data());
     });
   }
   // Edges (Eq. 24): (I + sum mu n n^T) e* = e - sum mu u n over the styled faces of the edge.
@@ -387,6 +392,7 @@ void GaussSolver::local_global_step() {
   auto t0 = Clock::now();
   const bool gauss = method_ == Method::gauss;
   if (gauss) {
+    update_preferred_normals();
     face_pass();
     timings_.faces = ms_since(t0);
     t0 = Clock::now();

@@ -82,6 +82,7 @@ double GaussSolver::arap_energy() const {
 }
 
 double GaussSolver::g_energy() const {
+  update_preferred_normals();  // a developable style's g is centred on the current mesh's preferred normals
   double total = 0;
   for (size_t f = 0; f < topo_.faces.size(); ++f) {
     const int s = face_style_[f];
@@ -90,11 +91,20 @@ double GaussSolver::g_energy() const {
     const Vector3d c = (X_[t[1]] - X_[t[0]]).cross(X_[t[2]] - X_[t[0]]);
     const double len = c.norm();
     if (!(len > 0) || !std::isfinite(len)) continue;
+    const Vector3d n = c / len;
+    const Vector3d& p = any_developable_ ? preferred_normal_[f] : n;
+    const auto value = [&](const PreferenceFunction& g) {
+      double v;
+      Vector3d grad;
+      Eigen::Matrix3d hess;
+      g.evaluate(n, p, v, grad, hess);
+      return v;
+    };
     if (s >= 0) {
-      total += face_weight_[f] * styles_[s].value(c / len);
+      total += face_weight_[f] * value(styles_[s]);
     } else {
       for (int k = blend_start_[-2 - s]; k < blend_start_[-1 - s]; ++k)
-        total += blend_terms_[k].weight * styles_[blend_terms_[k].style].value(c / len);
+        total += blend_terms_[k].weight * value(styles_[blend_terms_[k].style]);
     }
   }
   return total;

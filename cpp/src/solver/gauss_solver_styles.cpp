@@ -138,6 +138,10 @@ int GaussSolver::highest_face_style() const {
 }
 
 void GaussSolver::styles_changed() {
+  any_developable_ = std::any_of(styles_.begin(), styles_.end(), [](const PreferenceFunction& g) { return g.developable(); });
+  preferred_normal_.resize(any_developable_ ? topo_.faces.size() : 0);
+  vertex_moment_.resize(any_developable_ ? topo_.num_vertices : 0);
+  vertex_ruling_.resize(any_developable_ ? topo_.num_vertices : 0);
   const int blends = static_cast<int>(blend_start_.size()) - 1;
   blend_mu_.assign(blends, 0.0);
   blend_shares_.resize(blend_terms_.size());

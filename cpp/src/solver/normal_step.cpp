@@ -51,24 +51,34 @@ Vector3d newton_update(const Vector3d& grad_g, const Matrix3d& hess_g, const Vec
 
 }  // namespace
 
+namespace {
+
+void evaluate_style(const PreferenceFunction& style, const Vector3d& n, const Vector3d* preferred, double& g,
+                    Vector3d& grad_g, Matrix3d& hess_g) {
+  if (preferred) style.evaluate(n, *preferred, g, grad_g, hess_g);
+  else style.evaluate(n, g, grad_g, hess_g);
+}
+
+}  // namespace
+
 Vector3d newton_normal(const PreferenceFunction& style, const Vector3d& n, const Vector3d* es, const double* lw,
-                       const double* u) {
+                       const double* u, const Vector3d* preferred) {
   double g;
   Vector3d grad_g;
   Matrix3d hess_g;
-  style.evaluate(n, g, grad_g, hess_g);
+  evaluate_style(style, n, preferred, g, grad_g, hess_g);
   return newton_update(grad_g, hess_g, n, es, lw, u);
 }
 
 Vector3d newton_normal(const PreferenceFunction* styles, const StyleShare* shares, int count, const Vector3d& n,
-                       const Vector3d* es, const double* lw, const double* u) {
+                       const Vector3d* es, const double* lw, const double* u, const Vector3d* preferred) {
   Vector3d grad_sum = Vector3d::Zero();
   Matrix3d hess_sum = Matrix3d::Zero();
   for (int k = 0; k < count; ++k) {
     double g;
     Vector3d grad_g;
     Matrix3d hess_g;
-    styles[shares[k].style].evaluate(n, g, grad_g, hess_g);
+    evaluate_style(styles[shares[k].style], n, preferred, g, grad_g, hess_g);
     grad_sum += shares[k].share * grad_g;
     hess_sum += shares[k].share * hess_g;
   }

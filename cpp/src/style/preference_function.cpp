@@ -29,7 +29,8 @@ std::vector<double> solve_unit_weights(const Eigen::MatrixXd& K, const char* wha
 
 }  // namespace
 
-PreferenceFunction::PreferenceFunction(const StyleParams& p) : sigma_(p.sigma), mu_(p.mu), rotation_(p.rotation) {
+PreferenceFunction::PreferenceFunction(const StyleParams& p)
+    : sigma_(p.sigma), mu_(p.mu), rotation_(p.rotation), kind_(p.kind) {
   settings::sigma.check(p.sigma);
   settings::mu.check(p.mu);
   settings::axis_contribution.check(p.axis_contribution);
@@ -37,6 +38,13 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p) : sigma_(p.sigma), 
       (p.rotation.transpose() * p.rotation - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-6 ||
       p.rotation.determinant() < 0)
     throw std::invalid_argument("rotation must be a 3x3 rotation matrix (orthonormal, determinant +1)");
+  if (kind_ == StyleKind::developable) {
+    if (!p.normals.empty() || !p.ring_offsets.empty())
+      throw std::invalid_argument("a developable (sheet metal) style takes no preferred normals or rings: each "
+                                  "face's preferred normal comes from its neighbourhood");
+    axis_ = p.rotation * Eigen::Vector3d::UnitZ();
+    return;
+  }
   if (p.normals.empty() && p.ring_offsets.empty())
     throw std::invalid_argument("a style needs at least one preferred normal or one ring");
   if (p.normals.size() > static_cast<size_t>(settings::max_style_normals)) {
@@ -128,8 +136,32 @@ double PreferenceFunction::value(const Eigen::Vector3d& x) const {
   return g;
 }
 
+void PreferenceFunction::evaluate(const Eigen::Vector3d& x, const Eigen::Vector3d& preferred, double& g,
+                                  Eigen::Vector3d& grad, Eigen::Matrix3d& hess) const {
+  if (kind_ != StyleKind::developable) {
+    evaluate(x, g, grad, hess);
+    return;
+  }
+  const double s = sigma_;
+  g = std::exp(s * (x.dot(preferred) - 1.0));
+  grad = (s * g) * preferred;
+  hess = (s * s * g) * (preferred * preferred.transpose());
+}
+
 void PreferenceFunction::evaluate(const Eigen::Vector3d& x, double& g, Eigen::Vector3d& grad,
                                   Eigen::Matrix3d& hess) const {
+  if (kind_ == StyleKind::developable) {
+    // The bump around x's own direction: g = exp(sigma (|x| - 1)), with its exact derivatives.
+    const double len = x.norm();
+    if (!(len > 0) || !std::isfinite(len)) {
+      evaluate(x, x, g, grad, hess);  // NaN or zero in, NaN or a plain value out, as the other styles
+      return;
+    }
+    const Eigen::Vector3d u = x / len;
+    evaluate(x, u, g, grad, hess);
+    hess.noalias() += (sigma_ * g / len) * (Eigen::Matrix3d::Identity() - u * u.transpose());
+    return;
+  }
   const double s = sigma_;
   // Discrete normals in chunks: arguments, exponentials, then the accumulation of g, its gradient
   // and the upper triangle of its Hessian from the precomputed n n^T.

@@ -88,6 +88,14 @@ const Preset kPresets[] = {
     {"cylinder", [] { return make_rings({0.0}); }},
     {"cone", [] { return make_rings({0.5}); }},  // surface normals 30 degrees above the equator
     {"double_cone", [] { return make_rings({0.5, -0.5}); }},
+    // No fixed directions: each face's preferred normal comes from its neighbours' (preference_function.h).
+    {"sheet_metal",
+     [] {
+       StyleParams p;
+       p.kind = StyleKind::developable;
+       p.sigma = settings::sheet_metal_sigma;
+       return p;
+     }},
 };
 
 }  // namespace

@@ -27,6 +27,7 @@
 #include "gauss/collision/self_intersection.h"
 #include "gauss/solver/constrained_laplacian.h"
 #include "gauss/solver/cubic_local_step.h"
+#include "gauss/solver/developable_normals.h"
 #include "gauss/solver/fixed_point_iteration.h"
 #include "gauss/solver/normal_step.h"
 #include "gauss/mesh/mesh_topology.h"
@@ -229,9 +230,11 @@ class GaussSolver {
   void styles_changed();
   // The highest style index any face uses (-1 if none).
   int highest_face_style() const;
-  // The Gauss method's normal update (newton_normal) for face style code s (face_style_).
-  Eigen::Vector3d normal_update(int s, const Eigen::Vector3d& n, const Eigen::Vector3d* es, const double* lw,
+  // The Gauss method's normal update (newton_normal) for face f of style code s (face_style_).
+  Eigen::Vector3d normal_update(int f, int s, const Eigen::Vector3d& n, const Eigen::Vector3d* es, const double* lw,
                                 const double* u) const;
+  // While a developable style is set: preferred_normal_ from the current vertices (developable_normals.h).
+  void update_preferred_normals() const;
   // The targets (caller's frame) of the given pins (#P, caller's numbering) from #P by 3 positions
   // (nullptr: the rest positions); throws unless the pins are distinct vertices and every target is
   // finite and within settings::max_pin_distance times the mesh's size of it.
@@ -280,6 +283,13 @@ class GaussSolver {
   std::vector<StyleShare> blend_shares_;        // as blend_terms_: the normal update's shares
   std::vector<double> vertex_weight_;           // #V by vertex_weight_styles_ (solver numbering) or empty
   int vertex_weight_styles_ = 0;
+  // While a style is developable (sheet metal), sized by styles_changed(): each face's preferred normal,
+  // updated before each Gauss step (and by g_energy()), and the per-vertex scratch it is made with.
+  // Empty otherwise. Mutable: g_energy() reads the current mesh's.
+  bool any_developable_ = false;
+  mutable std::vector<Eigen::Vector3d> preferred_normal_;   // #F
+  mutable std::vector<Eigen::Matrix3d> vertex_moment_;      // #V
+  mutable std::vector<Eigen::Vector3d> vertex_ruling_;      // #V
 
   // Parameters, constraints and the global step's system.
   double lambda_ = settings::lambda.default_value;

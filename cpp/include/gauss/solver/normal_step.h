@@ -22,9 +22,11 @@ bool solve_symmetric3(const Eigen::Matrix3d& H, const Eigen::Vector3d& b, Eigen:
 //   style  g (Eqs. 9-15);  n  3, unit: the current n*
 //   es  3 by 3: the face's three auxiliary edges e*_ij;  lw  3: lambda * w_ij of each
 //   u   3: the scaled duals u_fij
+//   preferred  3, unit, or nullptr: the normal the face's neighbourhood prefers, which a developable
+//              style's g is centred on (PreferenceFunction::evaluate); other styles ignore it
 // Returns the new unit normal (n itself if the update is not finite).
 Eigen::Vector3d newton_normal(const PreferenceFunction& style, const Eigen::Vector3d& n, const Eigen::Vector3d* es,
-                              const double* lw, const double* u);
+                              const double* lw, const double* u, const Eigen::Vector3d* preferred = nullptr);
 
 // One style of a face that blends several: the face's preference is sum_k share_k g_k(n), where
 // share_k = w_k mu_k / sum_j w_j mu_j (w: the face's weight for the style). The paper's rho = mu lambda,
@@ -37,6 +39,7 @@ struct StyleShare {
 // newton_normal for the blend of `count` >= 1 styles (shares[k].style indexes `styles`): the same
 // update with g, its gradient and its Hessian summed over the styles, each scaled by its share.
 Eigen::Vector3d newton_normal(const PreferenceFunction* styles, const StyleShare* shares, int count,
-                              const Eigen::Vector3d& n, const Eigen::Vector3d* es, const double* lw, const double* u);
+                              const Eigen::Vector3d& n, const Eigen::Vector3d* es, const double* lw, const double* u,
+                              const Eigen::Vector3d* preferred = nullptr);
 
 }  // namespace gauss

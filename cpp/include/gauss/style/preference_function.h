@@ -16,8 +16,16 @@
 
 namespace gauss {
 
+// What a style prefers. directions: fixed normals and rings on the sphere (every preset but one).
+// developable ("sheet metal"): no fixed directions; each face prefers the normal its neighbourhood
+// suggests (GaussSolver works it out before each step: its own normal turned onto the great circle of
+// its neighbours' normals, so the surface bends about one axis at a time), and g is one bump of the
+// style's sigma around that normal.
+enum class StyleKind { directions, developable };
+
 struct StyleParams {
-  // Preferred unit normals before rotation (#K by 3); may be empty if rings are given.
+  // Preferred unit normals before rotation (#K by 3); may be empty if rings are given; empty for a
+  // developable style.
   std::vector<Eigen::Vector3d> normals;
   // Circle terms: normals x with x.axis == d for each d in ring_offsets (|d| < 1).
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
@@ -27,6 +35,7 @@ struct StyleParams {
   double sigma = settings::sigma.default_value;  // concentration of every term
   double mu = settings::mu.default_value;        // weight of -mu * g in the energy
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // orientation on the Gauss sphere
+  StyleKind kind = StyleKind::directions;  // last, so that aggregate initializations keep their order
 };
 
 // g with its weights solved so that g(n_k) = 1 at every discrete normal (Eq. 10) and g = 1 on every
@@ -44,9 +53,18 @@ class PreferenceFunction {
   static constexpr int kExactNormals = 64;
 
   double value(const Eigen::Vector3d& x) const;
-  // Value, gradient (Eq. 11, 14) and Hessian (Eq. 12, 15) of g at x in one pass.
+  // Value, gradient (Eq. 11, 14) and Hessian (Eq. 12, 15) of g at x in one pass. A developable style
+  // has no fixed directions: its g is the bump around x's own direction, exp(sigma (|x| - 1)) (1 on the
+  // sphere), what a face on a flat patch is offered.
   void evaluate(const Eigen::Vector3d& x, double& g, Eigen::Vector3d& grad,
                 Eigen::Matrix3d& hess) const;
+  // The same for a face whose neighbourhood prefers the unit normal `preferred`: a developable style's
+  // bump exp(sigma (x.p - 1)) around p; any other style ignores `preferred`.
+  void evaluate(const Eigen::Vector3d& x, const Eigen::Vector3d& preferred, double& g, Eigen::Vector3d& grad,
+                Eigen::Matrix3d& hess) const;
+
+  StyleKind kind() const { return kind_; }
+  bool developable() const { return kind_ == StyleKind::developable; }
 
   double sigma() const { return sigma_; }
   double mu() const { return mu_; }
@@ -71,6 +89,7 @@ class PreferenceFunction {
   std::vector<double> ring_weights_;    // w'_r
   double sigma_, mu_;
   Eigen::Matrix3d rotation_;
+  StyleKind kind_;
 };
 
 }  // namespace gauss

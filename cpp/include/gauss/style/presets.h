@@ -1,6 +1,8 @@
 #pragma once
-// Named styles: the Gauss images of simple solids, in a Z-up frame (Blender's). Each preset is a
-// StyleParams with the default sigma, mu and axis contribution (settings.h); callers override those.
+// Named styles: the Gauss images of simple solids, in a Z-up frame (Blender's), and Sheet Metal (a
+// developable style, preference_function.h). Each preset is a StyleParams with the default sigma, mu and
+// axis contribution (settings.h; Sheet Metal's sigma is settings::sheet_metal_sigma); callers override
+// those.
 //
 // The preset table in presets.cpp is the one list of presets: preset_names(), gauss_core.PRESETS,
 // the add-on's core_facts.json and the add-on's style enum all derive from it. Its order IS the
