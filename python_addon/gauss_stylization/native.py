@@ -142,6 +142,16 @@ def ring_presets():
     return _ring_presets
 
 
+def preset_strengths():
+    """{preset name: (its own sigma, the lambda it is meant for)} of the presets that run at a lambda of
+    their own (gauss_core.PRESET_LAMBDA: Sheet Metal), asked from the solver; {} when it cannot load."""
+    try:
+        module = core()
+    except NativeModuleError:
+        return {}
+    return {name: (module.Style.preset(name).sigma, lam) for name, lam in module.PRESET_LAMBDA.items()}
+
+
 def read_facts_file(path, import_error=None):
     """Facts from a core_facts.json (keys DEFAULTS, LIMITS, PRESETS, METHODS, SIZE_LIMITS)."""
     try:

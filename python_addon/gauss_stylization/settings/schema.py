@@ -41,8 +41,14 @@ def preset_label(name):
 def _preset_items():
     # .blend files store the number, so preset i of the solver's registry is number i
     # (the registry only ever appends; see docs/architecture.md).
-    items = [(preset_identifier(name), preset_label(name),
-              "Prefer the face normals of a %s" % preset_label(name).lower(), number)
+    strengths = native.preset_strengths()
+
+    def tip(name):
+        if name in strengths:  # no fixed directions: each face's own, unbent (docs/styles.md)
+            return ("Each face turns towards one bending direction of its neighbourhood, like rolled or "
+                    "folded sheet; it shows at Sigma %g and Lambda about %g" % strengths[name])
+        return "Prefer the face normals of a %s" % preset_label(name).lower()
+    items = [(preset_identifier(name), preset_label(name), tip(name), number)
              for number, name in enumerate(FACTS.presets)]
     return items + [(CUSTOM, "Custom", "Prefer the normals listed below", CUSTOM_NUMBER)]
 
