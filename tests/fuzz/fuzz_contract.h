@@ -31,7 +31,8 @@ inline void check(const gauss::GaussSolver& s, const Mesh& m, const std::vector<
     if (!std::isfinite(out[i])) fail("a vertex coordinate is NaN or infinite");
     if (!(out_f[i] == static_cast<float>(out[i]))) fail("float and double read-outs differ");
   }
-  // Bounded: the box of the referenced rest vertices and the pin targets, grown kGrowth times.
+  // Bounded: the box of the referenced rest vertices and the pin targets, the session's earlier ones
+  // included, grown kGrowth times.
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
   for (int v = 0; v < nv; ++v)
     if (referenced[v])
@@ -41,6 +42,8 @@ inline void check(const gauss::GaussSolver& s, const Mesh& m, const std::vector<
       const double t = pins.target.empty() ? m.V[3 * pins.index[i] + k] : pins.target[3 * i + k];
       lo[k] = std::min(lo[k], t), hi[k] = std::max(hi[k], t);
     }
+  for (size_t i = 0; i < pins.earlier.size(); ++i)
+    lo[i % 3] = std::min(lo[i % 3], pins.earlier[i]), hi[i % 3] = std::max(hi[i % 3], pins.earlier[i]);
   const Eigen::Vector3d centre = 0.5 * lo + 0.5 * hi;  // halves first: no overflow near DBL_MAX
   const double extent = (0.5 * hi - 0.5 * lo).maxCoeff() * 2.0;
   for (int v = 0; v < nv; ++v)

@@ -9,8 +9,9 @@
 // Besides what the sanitizers check, a violation of this contract calls abort():
 //  * bad input is refused with std::invalid_argument (any other exception escapes: a crash);
 //  * a solver that was built steps and reads out finite coordinates and energies, and the coordinates
-//    stay bounded: within kGrowth times the extent of the rest mesh and the pin targets of their
-//    centre, however many steps ran (slivers once made meshes explode, finite but 1e80 wide);
+//    stay bounded: within kGrowth times the extent of the rest mesh and the pin targets (the
+//    session's earlier ones too: a vertex let go springs back over steps) of their centre, however
+//    many steps ran (slivers once made meshes explode, finite but 1e80 wide);
 //  * nothing is lost: vertices that no usable face references come back bit for bit as given, and
 //    pinned vertices exactly at their targets.
 //
@@ -47,6 +48,7 @@ inline void drag_pins(Reader& r, gauss::GaussSolver& s, const Mesh& m, Pins& pin
   try {
     s.set_pin_positions(moved.target.empty() ? nullptr : moved.target.data(), count);
     if (count != static_cast<int>(moved.index.size())) fail("a wrong number of pin positions was accepted");
+    retire(moved, pins, m);
     pins = std::move(moved);
   } catch (const std::invalid_argument& e) {
     GAUSS_FUZZ_TRACE("    refused: %s\n", e.what());
@@ -152,6 +154,7 @@ inline void run_one(const uint8_t* data, size_t size) {
         case 4: {
           Pins p = make_pins(r, m);
           s->set_pins(p.index, p.target.empty() ? nullptr : p.target.data());
+          retire(p, pins, m);
           pins = std::move(p);
           break;
         }

@@ -183,8 +183,18 @@ inline Mesh make_mesh(Reader& r) {
 
 struct Pins {
   std::vector<int64_t> index;
-  std::vector<double> target;  // empty: the rest positions
+  std::vector<double> target;   // empty: the rest positions
+  std::vector<double> earlier;  // #E by 3: the targets of the session's earlier pins (see retire())
 };
+
+// `next` replaces `old` as the session's pins: old's targets join the earlier ones. A vertex pinned far
+// away and then let go springs back over steps, not at once, so the bound must keep its old place.
+inline void retire(Pins& next, const Pins& old, const Mesh& m) {
+  next.earlier = old.earlier;
+  for (size_t i = 0; i < old.index.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      next.earlier.push_back(old.target.empty() ? m.V[3 * old.index[i] + k] : old.target[3 * i + k]);
+}
 
 inline Pins make_pins(Reader& r, const Mesh& m) {
   Pins p;
