@@ -30,6 +30,15 @@ EDITS_UNDO_NAME = "Edits during Stylize"  # the undo step of what was edited dur
 _STEPS = schema.field(schema.OBJECT, "iterations")
 
 
+def _idle_object_problem(context):
+    """Why an operator on the active object's mesh cannot run (None if it can): no usable object, or a
+    stylization running on it."""
+    problem = object_problem(context)
+    if problem is None and runs.is_running(context.active_object):
+        problem = "Stylization is already running on this object"
+    return problem
+
+
 def _last_registered_operator(context):
     operators = context.window_manager.operators
     return operators[-1].as_pointer() if len(operators) else None
@@ -294,9 +303,7 @@ class OBJECT_OT_gauss_stylize_reset(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        problem = object_problem(context)
-        if problem is None and runs.is_running(context.active_object):
-            problem = "Stylization is already running on this object"
+        problem = _idle_object_problem(context)
         if problem is None and not rest_store.has_capture(context.active_object.data):
             problem = "Nothing to reset: this mesh has not been stylized"
         return poll_result(cls, problem)
@@ -318,9 +325,7 @@ class OBJECT_OT_gauss_replay(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        problem = object_problem(context)
-        if problem is None and runs.is_running(context.active_object):
-            problem = "Stylization is already running on this object"
+        problem = _idle_object_problem(context)
         if problem is None:
             problem = replay.problem(context.active_object)
         return poll_result(cls, problem)

@@ -5,8 +5,8 @@ from bpy.props import StringProperty
 
 from . import native, operators
 from .errors import NativeModuleError
-from .mesh import output, recipe_store
-from .run import runs
+from .mesh import output
+from .run import replay, runs
 from .run.targets import stylize_objects
 from .settings import schema, styles
 from .settings.fields import Panel
@@ -85,7 +85,7 @@ class VIEW3D_PT_gauss_stylization(GaussPanel, bpy.types.Panel):
         row.scale_y = 1.5
         row.operator("object.gauss_stylize", icon='PLAY')
         row.operator("object.gauss_stylize_reset", icon='LOOP_BACK')
-        if recipe_store.KEY in obj.data:  # kept runs to replay (a look-up, not the recipe's parse)
+        if replay.problem(obj) is None:  # kept runs to replay
             layout.operator("object.gauss_replay", icon='FILE_REFRESH')
         draw_rows(split_column(layout), obj, obj.gauss_stylization, schema.OBJECT, Panel.MAIN)
         note = output.refusal_before_run(obj, context.view_layer.depsgraph)

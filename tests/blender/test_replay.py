@@ -156,3 +156,20 @@ def test_a_region_repainted_mid_run_replays_bit_for_bit(addon):
     assert [(e["step"], e["repainted"]) for e in events if "repainted" in e] == [(6, ["REGIONS"])]
     obj.vertex_groups["Paint"].add(list(range(len(rest))), 0.1, 'REPLACE')  # painted again since
     assert np.array_equal(_replay(obj), kept)
+
+
+def test_a_mesh_whose_vertex_count_changed_is_refused_and_left_alone(addon):
+    import bmesh
+    obj = _suzanne()
+    assert helpers.stylize(5) == {'FINISHED'}
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    bm.verts.ensure_lookup_table()
+    bmesh.ops.delete(bm, geom=[bm.verts[0]], context="VERTS")
+    bm.to_mesh(obj.data)
+    bm.free()
+    before = helpers.coords(obj)
+    helpers.activate(obj)
+    with pytest.raises(RuntimeError, match="vertex count changed"):
+        bpy.ops.object.gauss_replay()
+    assert np.array_equal(helpers.coords(obj), before)

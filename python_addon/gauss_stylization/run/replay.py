@@ -24,12 +24,10 @@ def recipe(obj):
 
 
 def problem(obj):
-    """Why ``obj`` cannot be replayed (None if it can)."""
-    stored = recipe_store.load(obj.data)
-    if stored is None:
+    """Why ``obj`` cannot be replayed (None if it can). A look-up only: the operator's poll asks it at
+    every redraw of the sidebar, and a recipe may be megabytes of JSON (replay() reads it)."""
+    if recipe_store.KEY not in obj.data:
         return "'%s' has no kept run to replay (Replay follows kept runs with Output Mesh or Shape Key)" % obj.name
-    if len(obj.data.vertices) != len(recipe_store.unpack(stored["rest"])):
-        return "The mesh's vertex count changed since its runs were kept; they cannot be replayed"
     return None
 
 
@@ -41,6 +39,9 @@ def replay(obj, progress=None):
         raise SettingsError(why)
     mesh = obj.data
     stored = recipe_store.load(mesh)
+    if stored is None or len(mesh.vertices) != len(recipe_store.unpack(stored["rest"])):
+        raise SettingsError("The mesh's vertex count changed since its runs were kept (or its recipe is "
+                            "from another version); they cannot be replayed")
     runs = stored["runs"]
     settings = obj.gauss_stylization
     before, kept = to_dict(settings), _snapshot(obj)
