@@ -124,6 +124,10 @@ class VIEW3D_PT_gauss_styles(GaussSubPanel, bpy.types.Panel):
         if slot is not None:
             col.separator()
             draw_rows(col, obj, slot, schema.SLOT, Panel.SLOT)
+            look = schema.look_lambda(slot.preset)
+            if look is not None and not schema.is_cubic(settings) and settings.lam < 0.5 * look:
+                wrapped_label(layout, "%s shows from Lambda about %g (Solver panel)"
+                              % (schema.style_label(slot.preset), look), 'INFO')
 
 
 class OBJECT_OT_gauss_run_details(bpy.types.Operator):

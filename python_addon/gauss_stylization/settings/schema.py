@@ -38,6 +38,23 @@ def preset_label(name):
     return name.replace("_", " ").title()
 
 
+# The Lambda at which a preset of the solver's PRESET_LAMBDA (one that needs a lambda of its own) shows
+# its look in the add-on, where new objects are Resolution Independent; the solver's figure is where its
+# measures are taken, which on Spot is past the look (rendered: docs/styles.md#sheet-metal).
+LOOK_LAMBDA = {"sheet_metal": 20.0}
+
+
+def look_lambda(identifier):
+    """The Lambda the slot's style needs to show (LOOK_LAMBDA), or None for a style that shows at any."""
+    return LOOK_LAMBDA.get(identifier.lower()) if identifier != CUSTOM else None
+
+
+def _preset_sigma(identifier):
+    """The sigma a new slot of this style starts at: the preset's own where it has one (Sheet Metal)."""
+    own = native.preset_strengths().get(identifier.lower())
+    return own[0] if own and identifier != CUSTOM else FACTS.defaults["sigma"]
+
+
 def _preset_items():
     # .blend files store the number, so preset i of the solver's registry is number i
     # (the registry only ever appends; see docs/architecture.md).
@@ -46,7 +63,8 @@ def _preset_items():
     def tip(name):
         if name in strengths:  # no fixed directions: each face's own, unbent (docs/styles.md)
             return ("Each face turns towards one bending direction of its neighbourhood, like rolled or "
-                    "folded sheet; it shows at Sigma %g and Lambda about %g" % strengths[name])
+                    "folded sheet; it takes Sigma %g and shows from Lambda about %g"
+                    % (strengths[name][0], LOOK_LAMBDA[name]))
         return "Prefer the face normals of a %s" % preset_label(name).lower()
     items = [(preset_identifier(name), preset_label(name), tip(name), number)
              for number, name in enumerate(FACTS.presets)]
@@ -114,17 +132,21 @@ def style_label(identifier):
     return next((item[1] for item in _preset_items() if item[0] == identifier), identifier)
 
 
-def _name_after_style(slot, _context):
+def _follow_style(slot, _context):
     """A slot is called after its style until the artist renames it: a name that is a style's
-    label (or empty) follows the Style."""
+    label (or empty) follows the Style. So does a Sigma left at a style's own (Sheet Metal's is
+    sharper than the others'): it becomes the new style's."""
     if slot.name == "" or slot.name in {item[1] for item in _preset_items()}:
         slot.name = style_label(slot.preset)
+    own = {_preset_sigma(item[0]) for item in _preset_items()}
+    if slot.sigma in own:
+        slot.sigma = _preset_sigma(slot.preset)
 
 
 # GaussStyleSlot: one style and the region it applies to.
 SLOT = (
     Choice("preset", "Style", "Shape whose face normals this region prefers, or your own normals",
-           _preset_items(), DEFAULT_PRESET, live=Live.STYLES, panel=Panel.SLOT, update=_name_after_style),
+           _preset_items(), DEFAULT_PRESET, live=Live.STYLES, panel=Panel.SLOT, update=_follow_style),
     # 'name' is what the UIList shows and renames (double-click). After 'preset', so that a saved
     # name is written after the Style (whose change renames a slot still called after its style).
     Text("name", "Name", default=DEFAULT_PRESET_LABEL),
