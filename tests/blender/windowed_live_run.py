@@ -368,6 +368,77 @@ def replay_button(name):
     push_undo("Replay scenario undone")
 
 
+def sheet_metal_from_the_style_menu(name):
+    """During a live run the slot's Style is turned to Sheet Metal with Ctrl+wheel over the menu, as an
+    artist scrolls through a dropdown: the Sigma becomes the style's own, the Styles panel names the
+    Lambda it shows from (screenshot sheet_metal_hint.png), typed in it unbends the mesh, and Esc
+    restores it bit-exactly."""
+    from windowed_actions import area_screenshot, find_sidebar_field
+    from measures import developability
+    obj = activate(bpy.data.objects[name])
+    slot = obj.gauss_stylization.styles[0]
+    original, lam = coords(obj), obj.gauss_stylization.lam
+    push_undo("Before Sheet Metal")
+    look = addon().settings.schema.LOOK_LAMBDA["sheet_metal"]
+    yield from live_run(3)
+    yield from find_sidebar_field("gauss_stylization.styles[0].preset")
+    check("the sidebar shows the slot's Style menu", found_at() is not None)
+    if found_at() is None:
+        return
+    for _ in range(2 * len(addon().settings.schema._preset_items())):  # Ctrl+wheel steps through the items
+        if slot.preset == 'SHEET_METAL':
+            break
+        yield from find_sidebar_field("gauss_stylization.styles[0].preset")  # rows come and go with the style
+        if found_at() is None:
+            break
+        x, y = found_at()
+        window().event_simulate(type='MOUSEMOVE', value='NOTHING', x=x, y=y)
+        yield 0.05
+        window().event_simulate(type='WHEELDOWNMOUSE', value='PRESS', x=x, y=y, ctrl=True)
+        yield 0.3
+    check("Ctrl+wheel over the Style menu reaches Sheet Metal", slot.preset == 'SHEET_METAL', slot.preset)
+    own = addon().native.preset_strengths()["sheet_metal"][0]
+    check("... and the slot's Sigma becomes the style's own", slot.sigma == own, str(slot.sigma))
+    op = live_operator()
+    check("the run goes on with the new style", op is not None)
+    ui = view3d()[1]['UI']
+    for _ in range(10):  # the hint is under the slot's rows: scroll the sidebar down to it
+        press('WHEELDOWNMOUSE', ui.x + ui.width // 2, ui.y + ui.height // 2)
+        yield 0.2
+    yield 0.5
+    area_screenshot(os.path.join(kit.SHOTS, "sheet_metal_hint.png"))
+    check("the Styles panel says which Lambda it shows from", op is not None and any(
+        "Sheet Metal shows from Lambda about %g" % look in " ".join(text) for text in [_drawn_labels()]))
+    # The Solver panel starts closed; typing into its fields is windowed_self_intersections' part.
+    obj.gauss_stylization.lam = look
+    op = live_operator()
+    yield from wait_steps((op.session.steps if op and op.session else 0) + 60, limit=120.0)
+    tris, _ = helpers.triangles(obj)
+    before, after = developability(original.reshape(-1, 3), tris), developability(coords(obj).reshape(-1, 3), tris)
+    check("the mesh on screen unbends (developability at least halved)", after < 0.5 * before,
+          "%.5f -> %.5f" % (before, after))
+    yield from kit.end_with('ESC', "Esc then restores it bit-exactly", name, original)
+    for _ in range(10):
+        press('WHEELUPMOUSE', ui.x + ui.width // 2, ui.y + ui.height // 2)
+        yield 0.1
+    slot = bpy.data.objects[name].gauss_stylization.styles[0]
+    slot.preset, slot.sigma = 'CUBE', addon().settings.schema.FACTS.defaults["sigma"]
+    bpy.data.objects[name].gauss_stylization.lam = lam
+    push_undo("Sheet Metal scenario undone")
+
+
+def found_at():
+    from windowed_actions import found
+    return found.get("at")
+
+
+def _drawn_labels():
+    """The labels the Styles panel draws now (panel_recorder)."""
+    from panel_recorder import draw, labels
+    with kit.override():
+        return labels(draw(addon().ui.VIEW3D_PT_gauss_styles, bpy.context))
+
+
 # -- scenario -------------------------------------------------------------------------------
 
 def make_other(name):
@@ -385,7 +456,8 @@ def make_other(name):
 
 SCENARIOS = ("sigma_and_move_during_a_kept_run", "sigma_and_move_during_a_cancelled_run",
              "gizmo_and_header_clicks", "outliner_selection", "several_objects", "region_group_deleted",
-             "converged_then_sigma_resumes", "cubic_converges_accelerated", "unstable_run_says_so", "replay_button")
+             "converged_then_sigma_resumes", "cubic_converges_accelerated", "unstable_run_says_so", "replay_button",
+             "sheet_metal_from_the_style_menu")
 
 
 def run_scenario(scenario_name, name, other):
