@@ -28,6 +28,7 @@ sys.path.insert(0, os.path.join(ROOT, "scripts", "quality"))
 import paths  # noqa: E402,F401  (gauss_core and tests/common on sys.path)
 import gauss_core  # noqa: E402
 import measure_run  # noqa: E402
+import measures  # noqa: E402
 import options  # noqa: E402
 import report  # noqa: E402
 import runner  # noqa: E402
@@ -76,7 +77,9 @@ def _page(records, seconds, problems, commit, meshes_left=0):
         "```", "",
         "## What the columns say", "",
         "- share: area share of the faces within 10 degrees of the style's preferred normals or rings, input > "
-        "result (`tests/common/measures.py`); for a 0-to-1 painted gradient also at its light end (weight "
+        "result (`tests/common/measures.py`); for Sheet Metal, which has no fixed directions, of the faces whose "
+        f"corners' normals lie within {measures.DEVELOPABLE_DEGREES:g} degrees of one great circle "
+        "(developable_share); for a 0-to-1 painted gradient also at its light end (weight "
         "<= 0.2) and its heavy end (>= 0.8). vs plain: the share minus that of the same run without the option.",
         "- pairs: faces crossing each other as Blender's 3D-Print toolbox counts them "
         "(`gauss_core.self_intersections`), input > result, and in brackets those the input did not have.",

@@ -67,6 +67,8 @@ def run_option(option, V, F, pairs_in):
         keywords = dict(option.keywords, method=option.method, tolerance=TOLERANCE)
         if option.lam is not None:
             keywords["lam"] = option.lam
+        elif option.preset in gauss_core.PRESET_LAMBDA:  # a preset with a lambda of its own (Sheet Metal)
+            keywords["lam"] = gauss_core.PRESET_LAMBDA[option.preset]
         pins = option.pins(V, F) if option.pins else None
         start = time.perf_counter()
         solver = gauss_core.Solver(V, F, pinned=pins, **keywords)

@@ -45,7 +45,7 @@ class Option:
     name: str
     preset: str = "cube"
     method: str = "gauss"
-    lam: Optional[float] = None  # None: gauss_core.DEFAULTS['lam']
+    lam: Optional[float] = None  # None: the preset's gauss_core.PRESET_LAMBDA, else DEFAULTS['lam']
     keywords: dict = field(default_factory=dict)  # more gauss_core.Solver keywords
     weights: Optional[Callable] = None  # (V, F) -> (#F, 1) face weights for set_face_weights
     pins: Optional[Callable] = None  # (V, F) -> pinned vertex indices
@@ -68,6 +68,7 @@ OPTIONS = [
     Option("cube painted 0.5", weights=uniform_weight(0.5), tags=("paint",), plain="cube"),
     Option("cube painted 0-1", weights=gradient_weights, tags=("paint",), plain="cube"),
     Option("cube pinned 5%", pins=lowest_vertices(0.05), plain="cube"),
+    Option("sheet metal", preset="sheet_metal"),
 ]
 
 
