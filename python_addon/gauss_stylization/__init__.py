@@ -28,9 +28,10 @@ MODULES = (
     "run.pin_targets", "run.live_run", "run.scripted_run", "run.replay", "run.modal_events",
     "handles.handles", "handles.handle_tool",
     "sphere.gauss_sphere", "sphere.directions", "sphere.orientation", "sphere.surface", "sphere.sphere_overlay",
+    "sphere.style_reach", "sphere.reach_overlay",
     "sphere.sphere_editing", "sphere.style_from_data",
     "bake.pc2", "bake.bake", "bake.bake_operators", "bake.bake_ui", "bake.farm", "bake.batch", "bake.farm_cli",
-    "operators", "slot_operators", "crossing_operators", "ui",
+    "operators", "slot_operators", "crossing_operators", "reach_operators", "ui",
 )
 
 import importlib  # noqa: E402
@@ -45,7 +46,8 @@ import inspect  # noqa: E402
 
 import bpy  # noqa: E402
 
-from . import bake, crossing_operators, handles, operators, run, settings, slot_operators, sphere, ui  # noqa: E402,E501
+from . import (  # noqa: E402
+    bake, crossing_operators, handles, operators, reach_operators, run, settings, slot_operators, sphere, ui)
 # The modules artists' scripts import by name (docs/scripting.md, docs/baking.md), at the top as before.
 from .bake import pc2  # noqa: E402,F401
 from .mesh import mesh_io  # noqa: E402,F401
@@ -53,6 +55,7 @@ from .run import replay  # noqa: E402,F401
 from .settings import settings_io, styles  # noqa: E402,F401
 
 classes = (settings.properties.classes + operators.classes + slot_operators.classes + crossing_operators.classes
+           + reach_operators.classes
            + sphere.style_from_data.classes
            + sphere.sphere_editing.classes + bake.bake_operators.classes + ui.classes + bake.bake_ui.classes)
 
@@ -73,6 +76,7 @@ def register():
     settings.versioning.register_handlers()
     run.runs.register_handlers()
     sphere.sphere_overlay.register()
+    sphere.reach_overlay.register()
     sphere.sphere_editing.register()
     handles.handle_tool.register()
     bake.farm_cli.register()
@@ -85,6 +89,7 @@ def unregister():
     run.runs.stop_all(bpy.context)  # first: a run's end is told to the event handlers below (on_end)
     handles.handle_tool.unregister()
     sphere.sphere_editing.unregister()
+    sphere.reach_overlay.unregister()
     sphere.sphere_overlay.unregister()
     settings.properties.unregister_pointer()
     for cls in reversed(classes):

@@ -2,7 +2,6 @@
 an artist checks a print before exporting it, with Avoid Self-Intersections or without. Select Held
 Faces: during a live run, the faces where Avoid Self-Intersections holds the run back."""
 
-import bmesh
 import bpy
 
 from . import native
@@ -57,30 +56,9 @@ class OBJECT_OT_gauss_select_intersections(bpy.types.Operator):
         except ValueError as exc:  # NaN or infinite coordinates
             self.report({'ERROR'}, "Cannot check '%s': %s" % (obj.name, exc))
             return {'CANCELLED'}
-        if obj.mode == 'EDIT':
-            self._select_in_edit_mode(context, obj, found.polygons)
-        else:
-            crossings.select_polygons(obj.data, found.polygons)
-            # Edit Mode shows the selection; it would end a live run, so then it waits for the artist.
-            if len(found.polygons) and not runs.is_running(obj) and context.window is not None:
-                bpy.ops.object.mode_set(mode='EDIT')
-                # In vertex select mode Edit Mode would add every face whose corners are all selected.
-                self._select_in_edit_mode(context, obj, found.polygons)
+        crossings.select_and_show(context, obj, found.polygons, runs.is_running(obj))
         self.report({'WARNING'} if len(found.pairs) else {'INFO'}, said(found))
         return {'FINISHED'}
-
-    @staticmethod
-    def _select_in_edit_mode(context, obj, polygons):
-        mesh = obj.data
-        context.tool_settings.mesh_select_mode = (False, False, True)
-        edit = bmesh.from_edit_mesh(mesh)
-        for element in (*edit.verts, *edit.edges, *edit.faces):
-            element.select_set(False)
-        edit.faces.ensure_lookup_table()
-        for index in polygons:
-            edit.faces[int(index)].select_set(True)
-        edit.select_flush_mode()
-        bmesh.update_edit_mesh(mesh)
 
 
 def _held_problem(context):

@@ -115,6 +115,10 @@ class VIEW3D_PT_gauss_styles(GaussSubPanel, bpy.types.Panel):
         tools.operator("object.gauss_style_from_object", icon='OBJECT_DATA')
         tools.operator("object.gauss_style_auto_orient", icon='ORIENTATION_GIMBAL')
         draw_rows(split_column(layout), obj, settings, schema.OBJECT, Panel.SPHERE)
+        if settings.show_style_reach:
+            reach = layout.column(align=True)
+            reach.operator("object.gauss_select_unreached", icon='RESTRICT_SELECT_OFF')
+            reach.operator("object.gauss_store_style_angles", icon='GROUP_VERTEX')
         if not settings.styles:
             wrapped_label(layout, "Stylize adds a %s style" % schema.DEFAULT_PRESET_LABEL, 'INFO')
             return

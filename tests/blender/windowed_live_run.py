@@ -427,6 +427,64 @@ def sheet_metal_from_the_style_menu(name):
     push_undo("Sheet Metal scenario undone")
 
 
+def style_reach_overlay(name):
+    """Style Reach switched on with a click on its checkbox: the faces are coloured by their angle to the
+    Cube style's normals, the scale drawn in the corner (screenshots style_reach_before.png and
+    style_reach_live.png, looked at); during a live run the colours follow the mesh (the drawn angles
+    fall), and a click on Select Unreached after Esc selects the faces 15 degrees or more away."""
+    from windowed_actions import area_screenshot, find_sidebar_button, found
+    from gauss_stylization.sphere import reach_overlay
+    obj = activate(bpy.data.objects[name])
+    original = coords(obj)
+    yield from find_sidebar_field_click("gauss_stylization.show_style_reach")
+    check("a click on the Style Reach checkbox switches it on", obj.gauss_stylization.show_style_reach)
+    yield 1.0
+    area_screenshot(os.path.join(kit.SHOTS, "style_reach_before.png"))
+    drawn = reach_overlay._cache.get(obj.as_pointer(), {})
+    before = np.nanmean(drawn["angles"]) if drawn.get("angles") is not None else None
+    check("the overlay is drawn with every face's angle", before is not None and np.isfinite(before),
+          str(drawn.get("problem")))
+    yield from live_run(40)
+    yield 1.0  # a redraw after the last refresh
+    area_screenshot(os.path.join(kit.SHOTS, "style_reach_live.png"))
+    drawn = reach_overlay._cache.get(obj.as_pointer(), {})
+    during = np.nanmean(drawn["angles"]) if drawn.get("angles") is not None else None
+    check("during the run the drawn angles follow the mesh (their mean falls)",
+          before is not None and during is not None and during < 0.7 * before, "%s -> %s" % (before, during))
+    yield from kit.end_with('ESC', "Esc restores the mesh bit-exactly", name, original)
+    yield from find_sidebar_button("gauss_select_unreached")
+    check("the sidebar shows Select Unreached while Style Reach is on", found["button"] is not None)
+    if found["button"] is not None:
+        press('LEFTMOUSE', *found["button"])
+        yield 1.0
+        obj = bpy.data.objects[name]
+        if obj.mode == 'EDIT':
+            obj.update_from_editmode()
+        selected = np.zeros(len(obj.data.polygons), bool)
+        obj.data.polygons.foreach_get("select", selected)
+        from gauss_stylization import reach_operators
+        expected = np.nan_to_num(reach_operators.polygon_angles(obj), nan=-1.0) >= 15.0
+        check("a click on it selects the faces 15 degrees or more from the Cube style's normals",
+              selected.any() and np.array_equal(selected, expected), "%d of %d" % (selected.sum(), expected.sum()))
+        if obj.mode == 'EDIT':
+            with kit.override():
+                bpy.ops.object.mode_set(mode='OBJECT')
+    bpy.data.objects[name].gauss_stylization.show_style_reach = False
+    push_undo("Style Reach scenario undone")
+
+
+def find_sidebar_field_click(data_path):
+    """Generator: a click on the sidebar field (a checkbox) of ``data_path``."""
+    from windowed_actions import find_sidebar_field
+    yield from find_sidebar_field(data_path)
+    check("the sidebar shows %s" % data_path, found_at() is not None)
+    if found_at() is not None:
+        x, y = found_at()
+        ui = view3d()[1]['UI']
+        press('LEFTMOUSE', ui.x + ui.width // 2 - 60, y)  # the checkbox is left of the value column
+        yield 0.5
+
+
 def found_at():
     from windowed_actions import found
     return found.get("at")
@@ -457,7 +515,7 @@ def make_other(name):
 SCENARIOS = ("sigma_and_move_during_a_kept_run", "sigma_and_move_during_a_cancelled_run",
              "gizmo_and_header_clicks", "outliner_selection", "several_objects", "region_group_deleted",
              "converged_then_sigma_resumes", "cubic_converges_accelerated", "unstable_run_says_so", "replay_button",
-             "sheet_metal_from_the_style_menu")
+             "sheet_metal_from_the_style_menu", "style_reach_overlay")
 
 
 def run_scenario(scenario_name, name, other):

@@ -20,7 +20,7 @@ LAYERS = (
     ("view",),
     ("run",),
     ("handles", "sphere", "bake"),
-    ("operators", "slot_operators", "crossing_operators"),
+    ("operators", "slot_operators", "crossing_operators", "reach_operators"),
     ("ui",),
 )
 

@@ -5,6 +5,8 @@ Counted on the loop triangles (what the solver sees) by ``gauss_core.self_inters
 3D-Print toolbox counts them; each triangle is mapped back to the polygon it comes from.
 """
 
+import bmesh
+import bpy
 import numpy as np
 
 from .mesh_io import read_loop_triangles
@@ -88,3 +90,30 @@ def polygons_with_vertices(arrays, vertices):
     at = np.zeros(arrays.num_vertices, bool)
     at[np.asarray(vertices, np.int64)] = True
     return np.unique(arrays.corner_polygon[at[arrays.corner_vertex]]).astype(np.int32)
+
+
+def select_and_show(context, obj, polygons, running):
+    """Select exactly ``polygons`` of ``obj`` and show them: in Edit Mode, which an object in Object
+    Mode enters when something is selected, unless a live run goes on (``running``: Edit Mode would end
+    it, so then it waits for the artist)."""
+    if obj.mode == 'EDIT':
+        _select_in_edit_mode(context, obj, polygons)
+        return
+    select_polygons(obj.data, polygons)
+    if len(polygons) and not running and context.window is not None:
+        bpy.ops.object.mode_set(mode='EDIT')
+        # In vertex select mode Edit Mode would add every face whose corners are all selected.
+        _select_in_edit_mode(context, obj, polygons)
+
+
+def _select_in_edit_mode(context, obj, polygons):
+    mesh = obj.data
+    context.tool_settings.mesh_select_mode = (False, False, True)
+    edit = bmesh.from_edit_mesh(mesh)
+    for element in (*edit.verts, *edit.edges, *edit.faces):
+        element.select_set(False)
+    edit.faces.ensure_lookup_table()
+    for index in polygons:
+        edit.faces[int(index)].select_set(True)
+    edit.select_flush_mode()
+    bmesh.update_edit_mesh(mesh)

@@ -26,6 +26,8 @@ PIN_THRESHOLD = 0.5     # a vertex is pinned when its pin-group weight is above 
 # (a mesh that keeps changing, a Tolerance below what the shape reaches), so a script always ends.
 UNTIL_CONVERGED_CAP = 5000
 NEW_OBJECT_SUFFIX = "_stylized"  # New Object output: '<name>_stylized'
+# Style Reach's colour scale ends here: a face this many degrees or more from its preferred normal is red.
+REACH_SCALE_DEGREES = 30.0
 CUSTOM_NUMBER = 99  # enum number of Custom in saved files; presets are numbered 0, 1, ... in PRESETS order
 
 
@@ -242,6 +244,11 @@ OBJECT = (
          "preferred normals as dots and the mesh's face normals as points. With a Custom style active, "
          "click the sphere to add a normal, drag a dot to move it, right-click to remove the nearest",
          default=False, panel=Panel.SPHERE, text="Gauss Sphere"),
+    Bool("show_style_reach", "Show Style Reach",
+         "Colour every face by its angle to the normal its style prefers (green: reached, red: %g degrees or "
+         "more; grey: no style), live during a run, with the scale in the corner of the 3D view"
+         % REACH_SCALE_DEGREES,
+         default=False, panel=Panel.SPHERE, text="Style Reach"),
     Slots("styles", "Styles", "GaussStyleSlot", SLOT, owner_name=lambda slot: "Style '%s'" % slot.name),
     Index("active_style_index", "Active Style"),
 )

@@ -1,0 +1,208 @@
+"""The Style Reach overlay: every visible mesh whose ``show_style_reach`` is on is drawn over in the
+colours of style_reach (its faces' angles to what their styles prefer), following a live run, with the
+colour scale in the bottom-right corner of every 3D view.
+
+The angles are computed again when the shape, the styles or the Regions change, at most every
+REFRESH_SECONDS while a run moves the mesh; the Regions' weights are read again when the object comes
+back from another mode (Weight Paint is where they change).
+"""
+
+import time
+
+import blf
+import bpy
+import gpu
+import numpy as np
+
+from .. import native
+from ..errors import NativeModuleError, SettingsError
+from ..mesh import mesh_io
+from ..run import runs
+from ..settings import paint_curve, styles
+from ..settings.fields import read_all
+from ..view import gpu_compat, viewport
+from . import directions, style_reach
+
+REFRESH_SECONDS = 0.25
+LIFT = 1e-3  # the overlay floats this share of the bounding box's diagonal above the surface (no z-fighting)
+ALPHA = 0.85
+TEXT = (1.0, 1.0, 1.0, 0.9)
+_cache = {}  # obj pointer -> {"key", "time", "positions", "colours", "angles" (#T), "weights_key", "weights"}
+
+
+def shown_objects(context):
+    return [obj for obj in context.visible_objects
+            if obj.type == 'MESH' and obj.gauss_stylization.show_style_reach]
+
+
+def _face_weights(obj, entry):
+    """(#T, #slots) face weights of the slots' Regions, as the solver has them: from the live run's
+    group weights, else read from the vertex groups (again after the object was in another mode)."""
+    session = runs.session_of(obj)
+    settings = obj.gauss_stylization
+    groups = tuple(slot.vertex_group for slot in settings.styles)
+    steepness = paint_curve.steepness(settings.method, settings.lam)
+    mesh = obj.data
+    source = (("run", id(session), id(session.weights)) if session is not None else
+              ("mesh", mesh.as_pointer(), len(mesh.vertices), len(mesh.polygons), entry.get("mode_key")))
+    key = (source, groups, settings.uncovered, steepness)
+    if entry.get("weights_key") != key:
+        if session is not None:
+            arrays, weights = session.arrays, session.weights
+        else:
+            arrays = mesh_io.MeshArrays(mesh)
+            weights = mesh_io.read_group_weights(obj) if any(groups) else {}
+        entry["weights"] = styles.face_weights(arrays, weights, list(groups), settings.uncovered, steepness)
+        entry["weights_key"] = key
+    return entry["weights"]
+
+
+def surface_of(obj):
+    """(coords #V by 3, triangles #T by 3, tri_polygon #T) of ``obj`` now: the live run's shape, else
+    the base mesh."""
+    session = runs.session_of(obj)
+    if session is not None:
+        coords = session.result if session.steps else session.arrays.coords
+        return coords, session.arrays.triangles, session.arrays.tri_polygon
+    mesh = obj.data
+    coords = np.empty((len(mesh.vertices), 3), np.float32)
+    mesh_io.read_base_coords(mesh, coords)
+    return (coords,) + tuple(mesh_io.read_loop_triangles(mesh))
+
+
+def angles_of(obj, surface=None, entry=None):
+    """(#T,) degrees: the angles of ``obj``'s triangles (style_reach) on ``surface`` (surface_of(obj)).
+    Raises SettingsError naming a slot that cannot be built, NativeModuleError, ValueError."""
+    coords, triangles, _ = surface_of(obj) if surface is None else surface
+    gauss_core = native.core()
+    for slot in obj.gauss_stylization.styles:
+        styles.checked_style(gauss_core, obj, slot)  # a clear message naming the slot, before any use
+    slot_styles = style_reach.slot_styles(gauss_core, obj)
+    slots = style_reach.triangle_slots(_face_weights(obj, {} if entry is None else entry))
+    return style_reach.triangle_angles(coords, triangles, slots, slot_styles)
+
+
+def _lifted(coords, triangles):
+    """Corner positions (3 #T by 3) a little above the surface, along the area-weighted vertex normals."""
+    coords = np.asarray(coords, np.float64)
+    normals, areas = directions.triangle_normals(coords, triangles)
+    weighted = normals * areas[:, None]
+    vertex_normals = np.zeros_like(coords)
+    for corner in range(3):
+        for axis in range(3):
+            vertex_normals[:, axis] += np.bincount(triangles[:, corner], weights=weighted[:, axis],
+                                                   minlength=len(coords))
+    vertex_normals /= np.maximum(np.linalg.norm(vertex_normals, axis=1), 1e-300)[:, None]
+    diagonal = float(np.linalg.norm(coords.max(axis=0) - coords.min(axis=0))) if len(coords) else 0.0
+    return (coords + LIFT * diagonal * vertex_normals)[triangles].reshape(-1, 3).astype(np.float32)
+
+
+def _content_key(obj, surface):
+    session = runs.session_of(obj)
+    settings = obj.gauss_stylization
+    slots = tuple(repr(read_all(styles.STYLE_FIELDS, slot)) for slot in settings.styles)
+    if session is not None:
+        shape = ("run", id(session), session.steps)
+    else:  # the mesh may be edited anywhere: a checksum of its coordinates
+        coords = surface[0]
+        shape = ("mesh", obj.data.as_pointer(), coords.shape, float(coords.sum(dtype=np.float64)),
+                 hash(coords[::97].tobytes()), len(surface[1]))
+    return shape, slots, settings.method, settings.lam, settings.uncovered, obj.mode
+
+
+def _entry(obj):
+    entry = _cache.setdefault(obj.as_pointer(), {})
+    if entry.get("mode") != obj.mode:  # back from Weight Paint: the Regions may have been repainted
+        entry["mode"] = obj.mode
+        entry["mode_key"] = entry.get("mode_key", 0) + 1
+    surface = surface_of(obj)
+    key = _content_key(obj, surface)
+    now = time.monotonic()
+    if entry.get("key") != key and (entry.get("key") is None or key[0][0] != "run"
+                                    or now - entry.get("time", 0.0) >= REFRESH_SECONDS):
+        try:
+            angles = angles_of(obj, surface, entry)
+        except (SettingsError, NativeModuleError, ValueError) as exc:
+            entry.update(key=key, time=now, positions=None, problem=str(exc))
+            return entry
+        entry.update(key=key, time=now, positions=_lifted(surface[0], surface[1]), problem=None,
+                     colours=np.repeat(style_reach.colours(angles, ALPHA), 3, axis=0), angles=angles)
+    return entry
+
+
+def draw_surfaces(context):
+    """The POST_VIEW handler's body: each shown object's faces in the scale's colours."""
+    gpu.state.blend_set('ALPHA')
+    gpu.state.depth_test_set('LESS_EQUAL')
+    gpu.state.depth_mask_set(False)
+    for obj in shown_objects(context):
+        entry = _entry(obj)
+        if entry.get("positions") is None or not len(entry["positions"]):
+            continue
+        gpu.matrix.push()
+        gpu.matrix.multiply_matrix(obj.matrix_world)
+        gpu_compat.draw_triangles(entry["positions"], entry["colours"])
+        gpu.matrix.pop()
+    gpu.state.depth_mask_set(True)
+
+
+def draw_scale(context):
+    """The POST_PIXEL handler's body: the colour scale, and a problem that keeps an object from showing."""
+    shown = shown_objects(context)
+    region = context.region
+    if not shown or region is None or context.area is None:
+        return
+    scale = context.preferences.system.ui_scale
+    width, height, margin = 160.0 * scale, 10.0 * scale, 20.0 * scale
+    visible = viewport.visible_rect(context.area, region)  # clear of a sidebar drawn over the region
+    right, bottom = visible.xmax - region.x - margin, visible.ymin - region.y + margin + 16.0 * scale
+    left = right - width
+    steps = 24
+    xs = np.linspace(left, right, steps + 1)
+    points = np.array([(x, y) for x in xs for y in (bottom, bottom + height)], np.float32)
+    tint = style_reach.colours(np.repeat(np.linspace(0.0, style_reach.SCALE_DEGREES, steps + 1), 2))
+    quads = [(2 * i, 2 * i + 1, 2 * i + 3) for i in range(steps)] + [(2 * i, 2 * i + 3, 2 * i + 2) for i in range(steps)]
+    gpu.state.blend_set('ALPHA')
+    gpu.state.depth_test_set('NONE')
+    gpu_compat.draw_triangles(points, tint, quads)
+    half = style_reach.SCALE_DEGREES / 2.0
+    for text, x in (("0\u00b0", left), ("%g\u00b0" % half, (left + right) / 2.0),
+                    ("%g\u00b0+" % style_reach.SCALE_DEGREES, right)):
+        _text(text, x, bottom - 13.0 * scale, scale, align="centre")
+    _text("Style Reach: angle to the preferred normal", right, bottom + height + 5.0 * scale, scale, align="right")
+    problems = [(obj.name, _cache.get(obj.as_pointer(), {}).get("problem")) for obj in shown]
+    line = bottom + height + 20.0 * scale
+    for name, problem in problems:
+        if problem:
+            _text("%s: %s" % (name, problem), right, line, scale, align="right")
+            line += 14.0 * scale
+
+
+def _text(text, x, y, scale, align="left"):
+    """``text`` at pixel (x, y) of the region; x is its left end, centre or right end (``align``)."""
+    font = 0
+    blf.size(font, 11.0 * scale)  # no DPI argument: gone in 4.0
+    if align != "left":
+        x -= blf.dimensions(font, text)[0] * (0.5 if align == "centre" else 1.0)
+    blf.color(font, *TEXT)
+    blf.position(font, x, y, 0.0)
+    blf.enable(font, blf.SHADOW)
+    blf.shadow(font, 3, 0.0, 0.0, 0.0, 0.9)
+    blf.shadow_offset(font, 1, -1)
+    blf.draw(font, text)
+    blf.disable(font, blf.SHADOW)
+
+
+_surfaces = gpu_compat.ViewDrawHandler("Style Reach overlay", lambda: draw_surfaces(bpy.context), 'POST_VIEW')
+_scale = gpu_compat.ViewDrawHandler("Style Reach scale", lambda: draw_scale(bpy.context), 'POST_PIXEL')
+
+
+def register():
+    _surfaces.add()
+    _scale.add()
+
+
+def unregister():
+    _scale.remove()
+    _surfaces.remove()
+    _cache.clear()
