@@ -32,13 +32,14 @@ import scene_paint_strength  # noqa: E402
 import scene_pins  # noqa: E402
 import scene_self_intersections  # noqa: E402
 import scene_sheet_metal  # noqa: E402
+import scene_style_reach  # noqa: E402
 import scene_sigma  # noqa: E402
 import scene_styles  # noqa: E402
 
 SCENES = (default_scene, scene_cube_stays_cube, scene_styles, scene_sigma, scene_pins,
           scene_multistyle, scene_extreme, scene_cubic_vs_gauss, scene_bake, scene_keep_volume, scene_handles,
           scene_from_example, scene_gauss_sphere, scene_paint_strength, scene_self_intersections,
-          scene_sheet_metal)
+          scene_sheet_metal, scene_style_reach)
 
 
 def main():
