@@ -1,6 +1,8 @@
 """Sheet Metal in the add-on (docs/styles.md#sheet-metal): a slot's style like any other. A slot takes the
 style's own Sigma, the style unbends a mesh at the Lambda its tooltip names, and it works with Regions,
 painted strength, pins, every output and bakes."""
+import json
+
 import bpy
 import numpy as np
 import pytest
@@ -103,6 +105,26 @@ def test_pinned_vertices_stay_where_they_are(addon):
     co = helpers.coords(obj)
     assert np.array_equal(co[top], rest[top])
     assert np.linalg.norm(co - rest, axis=1).max() > 1e-2
+
+
+def test_moved_handles_carry_it_along(addon):
+    obj, look = _sheet_suzanne(addon)
+    rest = helpers.coords(obj)
+    pins = np.flatnonzero(np.abs(rest[:, 0]) > 1.0)  # the ears' tips
+    helpers.add_group(obj, "Ears", pins)
+    obj.gauss_stylization.pin_group = "Ears"
+    obj.gauss_stylization.lam = look
+    targets = rest[pins].astype(np.float64)
+    targets[:, 2] += 0.4  # both ears' handles lifted
+    helpers.activate(obj)
+    assert bpy.ops.object.gauss_stylize(iterations=60, pin_targets=json.dumps({obj.name: targets.tolist()})) \
+        == {'FINISHED'}
+    co = helpers.coords(obj)
+    assert np.allclose(co[pins], targets.astype(np.float32), atol=1e-6)
+    near = (np.abs(rest[:, 0]) > 0.8) & (np.abs(rest[:, 0]) <= 1.0)
+    assert (co[near, 2] - rest[near, 2]).mean() > 0.1  # the ears followed their handles
+    tris, _ = helpers.triangles(obj)
+    assert developability(co, tris) < developability(rest, tris)
 
 
 @pytest.mark.parametrize("output", ['SHAPE_KEY', 'NEW_OBJECT'])
