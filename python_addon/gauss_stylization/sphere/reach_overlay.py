@@ -2,9 +2,10 @@
 colours of style_reach (its faces' angles to what their styles prefer), following a live run, with the
 colour scale in the bottom-right corner of every 3D view.
 
-The angles are computed again when the shape, the styles or the Regions change, at most every
-REFRESH_SECONDS while a run moves the mesh; the Regions' weights are read again when the object comes
-back from another mode (Weight Paint is where they change).
+The angles are computed again when the shape, the styles or the Regions change; while a run moves the
+mesh at most every REFRESH_SECONDS, and less often on a mesh whose angles take long to compute (at most
+REFRESH_SHARE of the time). The Regions' weights are read again when the object comes back from another
+mode (Weight Paint is where they change).
 """
 
 import time
@@ -22,8 +23,10 @@ from ..settings import paint_curve, styles
 from ..settings.fields import read_all
 from ..view import gpu_compat, viewport
 from . import directions, style_reach
+from .surface import surface_arrays
 
 REFRESH_SECONDS = 0.25
+REFRESH_SHARE = 0.2  # while a run moves the mesh, at most this share of the time goes into the angles
 LIFT = 1e-3  # the overlay floats this share of the bounding box's diagonal above the surface (no z-fighting)
 ALPHA = 0.85
 TEXT = (1.0, 1.0, 1.0, 0.9)
@@ -57,17 +60,10 @@ def _face_weights(obj, entry):
     return entry["weights"]
 
 
-def surface_of(obj):
-    """(coords #V by 3, triangles #T by 3, tri_polygon #T) of ``obj`` now: the live run's shape, else
-    the base mesh."""
-    session = runs.session_of(obj)
-    if session is not None:
-        coords = session.result if session.steps else session.arrays.coords
-        return coords, session.arrays.triangles, session.arrays.tri_polygon
-    mesh = obj.data
-    coords = np.empty((len(mesh.vertices), 3), np.float32)
-    mesh_io.read_base_coords(mesh, coords)
-    return (coords,) + tuple(mesh_io.read_loop_triangles(mesh))
+def surface_of(obj, cached_topology=False):
+    """(coords #V by 3, triangles #T by 3, tri_polygon #T) of ``obj`` now: the live run's shape, else the
+    base mesh (surface.surface_arrays)."""
+    return surface_arrays(obj, cached_topology)
 
 
 def angles_of(obj, surface=None, entry=None):
@@ -115,18 +111,20 @@ def _entry(obj):
     if entry.get("mode") != obj.mode:  # back from Weight Paint: the Regions may have been repainted
         entry["mode"] = obj.mode
         entry["mode_key"] = entry.get("mode_key", 0) + 1
-    surface = surface_of(obj)
+    surface = surface_of(obj, cached_topology=True)
     key = _content_key(obj, surface)
     now = time.monotonic()
+    wait = max(REFRESH_SECONDS, entry.get("cost", 0.0) / REFRESH_SHARE)
     if entry.get("key") != key and (entry.get("key") is None or key[0][0] != "run"
-                                    or now - entry.get("time", 0.0) >= REFRESH_SECONDS):
+                                    or now - entry.get("time", 0.0) >= wait):
         try:
             angles = angles_of(obj, surface, entry)
         except (SettingsError, NativeModuleError, ValueError) as exc:
             entry.update(key=key, time=now, positions=None, problem=str(exc))
             return entry
         entry.update(key=key, time=now, positions=_lifted(surface[0], surface[1]), problem=None,
-                     colours=np.repeat(style_reach.colours(angles, ALPHA), 3, axis=0), angles=angles)
+                     colours=np.repeat(style_reach.colours(angles, ALPHA), 3, axis=0), angles=angles,
+                     cost=time.monotonic() - now)
     return entry
 
 

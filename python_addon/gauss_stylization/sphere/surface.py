@@ -17,7 +17,13 @@ _triangles = {}  # "key": a mesh's identity and counts, "triangles": its loop tr
 
 
 def coords_and_triangles(obj, cached_topology=False):
-    """(coords #V by 3 float32, triangles #T by 3 int32) of ``obj``'s mesh now.
+    """(coords #V by 3 float32, triangles #T by 3 int32) of ``obj``'s mesh now (see surface_arrays)."""
+    return surface_arrays(obj, cached_topology)[:2]
+
+
+def surface_arrays(obj, cached_topology=False):
+    """(coords #V by 3 float32, triangles #T by 3 int32, polygon of each triangle #T int32) of ``obj``'s
+    mesh now.
 
     cached_topology: reuse the triangles read last time for the same mesh with the same
     vertex, face and corner counts (a viewport overlay redraws far more often than
@@ -25,14 +31,15 @@ def coords_and_triangles(obj, cached_topology=False):
     session = runs.session_of(obj)
     if session is not None:
         current = session.result if session.steps else session.arrays.coords
-        return current, session.arrays.triangles
+        return current, session.arrays.triangles, session.arrays.tri_polygon
     mesh = obj.data
     coords = np.empty((len(mesh.vertices), 3), np.float32)
     mesh_io.read_base_coords(mesh, coords)
     key = (mesh.as_pointer(), len(mesh.vertices), len(mesh.polygons), len(mesh.loops))
     if not cached_topology or _triangles.get("key") != key:
-        _triangles.update(key=key, triangles=mesh_io.read_loop_triangles(mesh)[0])
-    return coords, _triangles["triangles"]
+        triangles, tri_polygon = mesh_io.read_loop_triangles(mesh)
+        _triangles.update(key=key, triangles=triangles, tri_polygon=tri_polygon)
+    return coords, _triangles["triangles"], _triangles["tri_polygon"]
 
 
 def face_normals(obj):
