@@ -28,9 +28,10 @@ def show_angles(obj):
     top = addon.sphere.style_reach.SCALE_DEGREES
     centres = (np.arange(BANDS) + 0.5) * top / BANDS
     obj.data.materials.clear()
-    for rgba in addon.sphere.style_reach.colours(centres):
+    for rgba in addon.sphere.style_reach.colours(np.append(centres, np.nan)):  # the last: unstyled, grey
         obj.data.materials.append(render_kit.material(tuple(float(c) for c in rgba)))
     band = np.clip((angles / top * BANDS).astype(np.int64), 0, BANDS - 1)
+    band[angles < 0] = BANDS  # Store Style Angles' value where no style acts
     obj.data.polygons.foreach_set("material_index", band.astype(np.int32))
     return float(angles[angles >= 0].mean())
 

@@ -113,9 +113,8 @@ def test_the_overlay_follows_a_live_run_and_the_operators_wait_for_it(addon):
     try:
         for _ in range(40):
             live.tick(budget=1e9)
-        overlay._cache.clear()  # the refresh is throttled in time; a fresh entry reads the run's shape now
         assert np.array_equal(overlay.surface_of(obj)[0], live.sessions[0].result)
-        during = overlay._entry(obj)["angles"]
+        during = overlay._entry(obj, force=True)["angles"]  # force: however soon after the last refresh
         assert np.nanmean(during) < 0.7 * np.nanmean(before)
         assert not bpy.ops.object.gauss_store_style_angles.poll()
         assert not bpy.ops.object.gauss_select_unreached.poll()
@@ -140,3 +139,87 @@ def test_the_colour_scale(addon):
     assert green[1] > 0.6 > green[0] and red[0] > 0.8 > red[1] and np.array_equal(red, past)
     assert yellow[0] > 0.8 and yellow[1] > 0.8
     assert np.allclose(grey, addon.sphere.style_reach.UNSTYLED)
+
+
+def test_the_overlay_keeps_its_angles_until_something_they_depend_on_changes(addon):
+    obj = _cube()
+    slot = helpers.add_slot(obj, 'CUBE')
+    obj.gauss_stylization.show_style_reach = True
+    overlay = addon.sphere.reach_overlay
+    first = overlay._entry(obj)
+    angles, computed = first["angles"], first["time"]
+    assert overlay._entry(obj, force=True)["angles"] is angles  # nothing changed: nothing computed
+    slot.orientation = (0.0, 0.0, math.radians(45.0))  # a style field
+    turned = overlay._entry(obj, force=True)["angles"]
+    assert turned is not angles and np.nanmax(turned) == pytest.approx(45.0, abs=1e-3)
+    co = helpers.coords(obj)
+    co[:, 2] *= 1.5  # the mesh changed by another tool: the sides keep their normals, so move one vertex
+    co[0] += [0.3, 0.0, 0.0]
+    helpers.mesh_io.write_vertex_coords(obj.data, co)
+    obj.data.update()
+    moved = overlay._entry(obj, force=True)["angles"]
+    assert moved is not turned
+    helpers.add_group(obj, "Top", np.flatnonzero(co[:, 2] > 1.49))
+    slot.vertex_group = "Top"  # a Region
+    regional = overlay._entry(obj, force=True)["angles"]
+    assert np.isnan(regional).sum() > 0 and np.isfinite(regional).sum() > 0
+    # A shape that keeps changing (a drag, sculpting) is measured again only after a while (a timer redraws
+    # then), not at every redraw; a setting's change is shown at once.
+    co[1] += [0.0, 0.2, 0.0]
+    helpers.mesh_io.write_vertex_coords(obj.data, co)
+    assert overlay._entry(obj)["angles"] is regional
+    slot.orientation = (0.0, 0.0, 0.0)
+    assert overlay._entry(obj)["angles"] is not regional
+
+
+def test_a_deleted_region_group_is_named_not_raised(addon):
+    obj = _cube()
+    helpers.add_group(obj, "Gone", [0, 1, 2])
+    helpers.add_slot(obj, 'CUBE', group="Gone")
+    obj.vertex_groups.remove(obj.vertex_groups["Gone"])
+    obj.gauss_stylization.show_style_reach = True
+    entry = addon.sphere.reach_overlay._entry(obj)
+    assert entry["positions"] is None and "'Gone', no longer exists" in entry["problem"]
+    with pytest.raises(RuntimeError, match="no longer exists"):
+        bpy.ops.object.gauss_select_unreached()
+
+
+def test_coordinates_that_are_not_finite_are_named(addon):
+    obj = _cube()
+    helpers.add_slot(obj, 'CUBE')
+    co = helpers.coords(obj)
+    co[3] = np.nan
+    helpers.mesh_io.write_vertex_coords(obj.data, co)
+    obj.gauss_stylization.show_style_reach = True
+    entry = addon.sphere.reach_overlay._entry(obj)
+    assert entry["positions"] is None and "not finite" in entry["problem"]
+    assert addon.sphere.reach_overlay._entry(obj)["key"] == entry["key"]  # NaN keys still match: no recompute
+
+
+def test_shape_keys_are_measured_as_shown(addon):
+    obj = _cube()
+    helpers.add_slot(obj, 'TETRAHEDRON')
+    obj.shape_key_add(name="Basis")
+    flat = obj.shape_key_add(name="Flat")
+    co = helpers.coords(obj)
+    co[:, 2] = np.where(co[:, 2] > 0, 1.0, -1.0)
+    helpers.key_coords and flat.data.foreach_set("co", co.reshape(-1))
+    flat.value = 1.0
+    obj.data.update()
+    shown = addon.sphere.reach_overlay.surface_of(obj)[0]
+    assert np.allclose(shown, co)
+
+
+def test_the_look_lambda_covers_every_preset_with_a_lambda_of_its_own(addon):
+    assert set(addon.settings.schema.LOOK_LAMBDA) == set(addon.native.core().PRESET_LAMBDA)
+
+
+def test_the_axis_normals_of_a_ring_preset_count_only_with_an_axis_weight(addon):
+    obj = _cube(0)
+    slot = helpers.add_slot(obj, 'CYLINDER')
+    normals = np.empty((len(obj.data.polygons), 3), np.float32)
+    obj.data.polygons.foreach_get("normal", normals.reshape(-1))
+    caps = np.abs(normals[:, 2]) > 0.5
+    assert np.allclose(_angles(addon, obj)[caps], 0.0, atol=1e-3)
+    slot.axis_contribution = 0.0
+    assert np.allclose(_angles(addon, obj)[caps], 90.0, atol=1e-3)

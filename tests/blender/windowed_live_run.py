@@ -469,6 +469,7 @@ def style_reach_overlay(name):
         if obj.mode == 'EDIT':
             with kit.override():
                 bpy.ops.object.mode_set(mode='OBJECT')
+    check("the overlay's draw handlers raised nothing", not reach_overlay.failures(), str(reach_overlay.failures()))
     bpy.data.objects[name].gauss_stylization.show_style_reach = False
     push_undo("Style Reach scenario undone")
 

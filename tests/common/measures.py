@@ -2,6 +2,9 @@
 
 numpy only, so plain Python and Blender's Python both import it.
 """
+import importlib.util
+import os
+
 import numpy as np
 
 
@@ -32,35 +35,28 @@ def aligned_share(V, F, directions, degrees=10.0, face_mask=None, rings=()):
 
 
 # A developable style's faces have no fixed directions to be within 10 degrees of: a face reaches it
-# when its corners' normals lie within this many degrees (RMS) of one great circle. On Spot, the 6K bunny
-# and the 14.6K armadillo this share rises from 0.23, 0.38, 0.06 to 0.90, 0.97, 0.97 at Sheet Metal's
-# defaults, where the developability falls 11-26x (docs/styles.md#sheet-metal).
+# when its corners' normals lie within this many degrees (RMS) of one great circle (what this share
+# measures on the corpus: docs/styles.md#sheet-metal).
 DEVELOPABLE_DEGREES = 2.0
 
 
-def _vertex_spread_degrees(V, F):
-    """Per vertex: the RMS angle (degrees) of its faces' normals from their best great circle, i.e.
-    asin(sqrt(smallest eigenvalue of sum A n n^T / sum A)); 0 for a vertex no face uses."""
-    n, area = face_normals(V, F)
-    nV = len(V)
-    moment = np.zeros((nV, 3, 3))
-    total = np.zeros(nV)
-    nn = area[:, None, None] * n[:, :, None] * n[:, None, :]
-    for k in range(3):
-        np.add.at(moment, F[:, k], nn)
-        np.add.at(total, F[:, k], area)
-    used = total > 0
-    smallest = np.zeros(nV)
-    smallest[used] = np.linalg.eigvalsh(moment[used] / total[used][:, None, None])[:, 0]
-    return np.degrees(np.arcsin(np.sqrt(np.clip(smallest, 0.0, 1.0))))
+def _directions():
+    """The add-on's sphere/directions.py (numpy only), loaded by path: the spread is the add-on's
+    Style Reach measure, written once."""
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "python_addon",
+                        "gauss_stylization", "sphere", "directions.py")
+    spec = importlib.util.spec_from_file_location("gauss_directions", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def developable_share(V, F, degrees=DEVELOPABLE_DEGREES, face_mask=None):
     """Area-weighted share of the faces (of those in ``face_mask``) whose three corners each have their
     normals within ``degrees`` of one great circle: where a developable style is reached."""
     F = np.asarray(F)
-    _, area = face_normals(V, F)
-    reached = _vertex_spread_degrees(V, F)[F].max(axis=1) <= degrees
+    n, area = face_normals(V, F)
+    reached = _directions().vertex_spread_degrees(len(V), F, n, area)[F].max(axis=1) <= degrees
     if face_mask is not None:
         area, reached = area[face_mask], reached[face_mask]
     return float(area[reached].sum() / max(area.sum(), 1e-300))

@@ -65,8 +65,8 @@ def _preset_items():
     def tip(name):
         if name in strengths:  # no fixed directions: each face's own, unbent (docs/styles.md)
             return ("Each face turns towards one bending direction of its neighbourhood, like rolled or "
-                    "folded sheet; it takes Sigma %g and shows from Lambda about %g"
-                    % (strengths[name][0], LOOK_LAMBDA[name]))
+                    "folded sheet; it takes Sigma %g" % strengths[name][0]
+                    + ("" if name not in LOOK_LAMBDA else " and shows from Lambda about %g" % LOOK_LAMBDA[name]))
         return "Prefer the face normals of a %s" % preset_label(name).lower()
     items = [(preset_identifier(name), preset_label(name), tip(name), number)
              for number, name in enumerate(FACTS.presets)]
@@ -245,9 +245,9 @@ OBJECT = (
          "click the sphere to add a normal, drag a dot to move it, right-click to remove the nearest",
          default=False, panel=Panel.SPHERE, text="Gauss Sphere"),
     Bool("show_style_reach", "Show Style Reach",
-         "Colour every face by its angle to the normal its style prefers (green: reached, red: %g degrees or "
-         "more; grey: no style), live during a run, with the scale in the corner of the 3D view"
-         % REACH_SCALE_DEGREES,
+         "Colour every face by its angle to the normal its style prefers (Sheet Metal: how far the normals "
+         "around it spread from one great circle), green: reached, red: %g degrees or more, grey: no style; "
+         "live during a run, in Object Mode, with the scale in the corner of the 3D view" % REACH_SCALE_DEGREES,
          default=False, panel=Panel.SPHERE, text="Style Reach"),
     Slots("styles", "Styles", "GaussStyleSlot", SLOT, owner_name=lambda slot: "Style '%s'" % slot.name),
     Index("active_style_index", "Active Style"),

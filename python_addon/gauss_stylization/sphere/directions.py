@@ -98,3 +98,24 @@ def dominant_directions(gauss_core, normals, areas, max_directions, merge_degree
     keep = np.argsort(-shares, kind="stable")
     keep = keep[shares[keep] >= min_share][:max_directions]
     return directions[keep], shares[keep]
+
+
+def vertex_spread_degrees(num_vertices, triangles, normals, areas):
+    """Per vertex: the RMS angle (degrees) of its triangles' normals from their best great circle,
+    asin(sqrt(smallest eigenvalue of sum A n n^T / sum A)), 0 where the surface is developable and
+    where no triangle with area meets the vertex. triangles: #T by 3; normals: #T by 3 unit; areas: #T."""
+    triangles = np.asarray(triangles)
+    moment = np.zeros((num_vertices, 3, 3))
+    total = np.zeros(num_vertices)
+    outer = areas[:, None, None] * normals[:, :, None] * normals[:, None, :]
+    for corner in range(3):
+        vertices = triangles[:, corner]
+        total += np.bincount(vertices, weights=areas, minlength=num_vertices)
+        for i in range(3):
+            for j in range(i, 3):
+                moment[:, i, j] += np.bincount(vertices, weights=outer[:, i, j], minlength=num_vertices)
+    moment = np.triu(moment) + np.transpose(np.triu(moment, 1), (0, 2, 1))
+    used = total > 0
+    smallest = np.zeros(num_vertices)
+    smallest[used] = np.linalg.eigvalsh(moment[used] / total[used][:, None, None])[:, 0]
+    return np.degrees(np.arcsin(np.sqrt(np.clip(smallest, 0.0, 1.0))))

@@ -1,9 +1,10 @@
 """Where the style is not reached: each face's angle to the normal its style prefers for it.
 
 A face of a style with directions (every preset but Sheet Metal, and Custom) is measured against its
-style's nearest preferred normal or ring; a face of Sheet Metal, which has no fixed directions,
-against its neighbourhood's great circle (the RMS angle of the normals around each of its corners
-from their best great circle, the largest of the three); a face no slot stylizes has no angle (NaN).
+style's nearest preferred normal or ring; a face of Sheet Metal, which has no fixed directions, by how
+far the normals around it spread from one great circle (the RMS angle of the normals around each of its
+corners from their best great circle, the largest of the three: 0 where the surface is developable);
+a face no slot stylizes has no angle (NaN).
 Each triangle takes the slot with the largest weight on it, as the solver's blend is led by it. The
 Cubic method's slots prefer the axes of their rotated cube. Pure numpy; the overlay and the
 operators read the mesh and draw.
@@ -42,6 +43,8 @@ def _direction_angles(normals, style):
     """Degrees from each unit normal (N by 3) to the style's nearest preferred normal or ring."""
     best = np.full(len(normals), np.pi)
     preferred = np.asarray(style.normals, np.float64).reshape(-1, 3)
+    if len(style.ring_offsets) and style.axis_contribution <= 0.0:
+        preferred = preferred[:0]  # a ring preset's axis normals weigh nothing then (Axis Weight 0)
     if len(preferred):
         preferred = preferred / np.linalg.norm(preferred, axis=1)[:, None]
         chunk = max(1, _MAX_PRODUCTS // len(preferred))
@@ -56,25 +59,6 @@ def _direction_angles(normals, style):
     return np.degrees(best)
 
 
-def vertex_spread_degrees(num_vertices, triangles, normals, areas):
-    """Per vertex: the RMS angle (degrees) of its triangles' normals from their best great circle,
-    asin(sqrt(smallest eigenvalue of sum A n n^T / sum A)); 0 where no triangle has area."""
-    moment = np.zeros((num_vertices, 3, 3))
-    total = np.zeros(num_vertices)
-    outer = areas[:, None, None] * normals[:, :, None] * normals[:, None, :]
-    for corner in range(3):
-        vertices = triangles[:, corner]
-        total += np.bincount(vertices, weights=areas, minlength=num_vertices)
-        for i in range(3):
-            for j in range(i, 3):
-                moment[:, i, j] += np.bincount(vertices, weights=outer[:, i, j], minlength=num_vertices)
-    moment = np.triu(moment) + np.transpose(np.triu(moment, 1), (0, 2, 1))
-    used = total > 0
-    smallest = np.zeros(num_vertices)
-    smallest[used] = np.linalg.eigvalsh(moment[used] / total[used][:, None, None])[:, 0]
-    return np.degrees(np.arcsin(np.sqrt(np.clip(smallest, 0.0, 1.0))))
-
-
 def triangle_angles(coords, triangles, slot_of_triangle, slot_styles_):
     """(#T,) degrees: each triangle's angle to what its slot's style prefers for it (see the module's
     docstring); NaN for a triangle no slot stylizes or without area."""
@@ -87,10 +71,12 @@ def triangle_angles(coords, triangles, slot_of_triangle, slot_styles_):
             continue
         if style.kind == "developable":
             if spread is None:
-                spread = vertex_spread_degrees(len(coords), triangles, normals, areas)
+                spread = directions.vertex_spread_degrees(len(coords), triangles, normals, areas)
             angles[mine] = spread[triangles[mine]].max(axis=1)
         elif style.kind == "directions":
             angles[mine] = _direction_angles(normals[mine], style)
+        else:
+            raise ValueError("Style Reach cannot measure a style of kind '%s'" % style.kind)
     return angles
 
 

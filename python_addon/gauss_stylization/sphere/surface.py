@@ -13,7 +13,8 @@ from ..run import runs
 from . import directions
 
 
-_triangles = {}  # "key": a mesh's identity and counts, "triangles": its loop triangles
+_triangles = {}  # mesh pointer -> (its counts and stamp, loop triangles, their polygons), least recent first
+MAX_CACHED = 8
 
 
 def coords_and_triangles(obj, cached_topology=False):
@@ -21,13 +22,14 @@ def coords_and_triangles(obj, cached_topology=False):
     return surface_arrays(obj, cached_topology)[:2]
 
 
-def surface_arrays(obj, cached_topology=False):
+def surface_arrays(obj, cached_topology=False, stamp=None):
     """(coords #V by 3 float32, triangles #T by 3 int32, polygon of each triangle #T int32) of ``obj``'s
     mesh now.
 
-    cached_topology: reuse the triangles read last time for the same mesh with the same
-    vertex, face and corner counts (a viewport overlay redraws far more often than
-    artists change topology; a change that keeps every count shows at the next change)."""
+    cached_topology: reuse the triangles read last time for the same mesh with the same vertex, face
+    and corner counts and the same ``stamp`` (a viewport overlay redraws far more often than artists
+    change topology; the overlays pass a stamp that changes whenever the object leaves Edit Mode, where
+    flips and rotated edges keep every count). One entry per mesh, the last MAX_CACHED meshes."""
     session = runs.session_of(obj)
     if session is not None:
         current = session.result if session.steps else session.arrays.coords
@@ -35,11 +37,14 @@ def surface_arrays(obj, cached_topology=False):
     mesh = obj.data
     coords = np.empty((len(mesh.vertices), 3), np.float32)
     mesh_io.read_base_coords(mesh, coords)
-    key = (mesh.as_pointer(), len(mesh.vertices), len(mesh.polygons), len(mesh.loops))
-    if not cached_topology or _triangles.get("key") != key:
-        triangles, tri_polygon = mesh_io.read_loop_triangles(mesh)
-        _triangles.update(key=key, triangles=triangles, tri_polygon=tri_polygon)
-    return coords, _triangles["triangles"], _triangles["tri_polygon"]
+    key = (len(mesh.vertices), len(mesh.polygons), len(mesh.loops), stamp)
+    cached = _triangles.pop(mesh.as_pointer(), None)  # popped and put back: the dict keeps recent use last
+    if not cached_topology or cached is None or cached[0] != key:
+        cached = (key,) + tuple(mesh_io.read_loop_triangles(mesh))
+    _triangles[mesh.as_pointer()] = cached
+    while len(_triangles) > MAX_CACHED:
+        del _triangles[next(iter(_triangles))]
+    return coords, cached[1], cached[2]
 
 
 def face_normals(obj):

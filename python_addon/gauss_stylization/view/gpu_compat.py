@@ -42,13 +42,26 @@ def _positions(points):
     return points
 
 
-def draw_triangles(points, colours, indices=None):
-    """Smooth-coloured triangles. points: N by 2 or 3; colours: N by 4; indices: M by 3 or None."""
+def triangles_batch(points, colours, indices=None):
+    """A batch of smooth-coloured triangles to draw with draw_batch() as often as needed (building one
+    uploads every corner: keep it while the triangles stay). points: N by 2 or 3; colours: N by 4;
+    indices: M by 3 or None."""
     program, _ = shader("smooth")
-    batch = batch_for_shader(program, 'TRIS', {"pos": _positions(points), "color": np.asarray(colours, np.float32)},
-                             indices=None if indices is None else np.asarray(indices, np.int32))
+    return batch_for_shader(program, 'TRIS', {"pos": _positions(points), "color": np.asarray(colours, np.float32)},
+                            indices=None if indices is None else np.asarray(indices, np.int32))
+
+
+def draw_batch(batch):
+    """Draw a triangles_batch()."""
+    program, _ = shader("smooth")
     program.bind()
     batch.draw(program)
+
+
+def draw_triangles(points, colours, indices=None):
+    """Smooth-coloured triangles, uploaded for this drawing only. points: N by 2 or 3; colours: N by 4;
+    indices: M by 3 or None."""
+    draw_batch(triangles_batch(points, colours, indices))
 
 
 def draw_uniform(points, colour, primitive='TRIS'):
