@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""ARAP's bending stiffness against the edge length (docs/resolution.md#bending): a flat triangle
-lattice of spacing h bent into a cylinder of curvature kappa (an isometry), ARAP's energy with its
-optimal rotations (Solver.arap_energy after set_vertices) per unit area, over a kappa^2 (a: the face
-area): c_A; and the bending term sum_ij w_ij |R_i - R_j|_F^2 of the cylinder's own rotations per unit
-area over kappa^2: c_B.
+"""ARAP's bending stiffness against the edge length
+(docs/resolution.md#bending-araps-stiffness-shrinks-with-the-edge-length): a flat triangle lattice of spacing
+h bent into a cylinder of curvature kappa (an isometry), ARAP's energy with its optimal rotations
+(Solver.arap_energy after set_vertices) per unit area, over a kappa^2 (a: the face area): c_A; and the bending
+term sum_ij w_ij |R_i - R_j|_F^2 of the cylinder's own rotations per unit area over kappa^2: c_B.
 
 usage: measure_bending.py [--spacings 20 40 80] [--radii 1 0.5]
 Imports gauss_core from $GAUSS_BUILD_DIR/python (default: <repo>/build/python).

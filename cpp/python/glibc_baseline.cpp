@@ -9,10 +9,11 @@
 // script makes them local, so nothing outside the module sees them.
 //
 //  - exp: 2.29 gave it a new version (same values, no SVID error handling, and on x86-64 an
-//    implementation chosen for the CPU: the old version measured about 5% slower in the preference
-//    function). The first call therefore looks exp@GLIBC_2.29 up with dlvsym and uses it where it
-//    exists, i.e. the very function the module would otherwise have been linked to; an older glibc
-//    gets its GLIBC_2.2.5 version, the only one it has. The solver needs the value, never errno.
+//    implementation chosen for the CPU: the old version is slower in the preference function, see
+//    docs/building.md, "Why not zig instead"). The first call therefore looks exp@GLIBC_2.29 up with
+//    dlvsym and uses it where it exists, i.e. the very function the module would otherwise have been
+//    linked to; an older glibc gets its GLIBC_2.2.5 version, the only one it has. The solver needs the
+//    value, never errno.
 //  - pthread_create, pthread_detach, pthread_once, __pthread_key_create: 2.34 moved libpthread (and
 //    libdl) into libc under new versions. Forwarded to the GLIBC_2.2.5 versions, the same functions,
 //    which libc keeps for old binaries and which glibc < 2.34 has in libpthread.so.0; dlvsym, used for

@@ -79,7 +79,7 @@ def _two_spheres_with_a_cap(addon):
 def test_a_run_the_guard_stops_says_held_back_and_not_converged(addon):
     # The pinned cap pushed into the other sphere: without the guard it passes through and the run
     # converges; with it the run comes to rest short of it, and says the guard holds it, never
-    # "Converged" (it used to report Converged while the guard was what stopped it).
+    # "Converged", which would tell the artist the style is done while the guard is what stopped it.
     obj, targets = _two_spheres_with_a_cap(addon)
     helpers.add_slot(obj, 'CUBE')
     original = helpers.coords(obj)

@@ -143,7 +143,7 @@ TEST(SelfIntersections, AMeshThatAlreadyIntersectsCrossesNowhereElseAndIsHeldOnl
   // The two plates, the second moved into the first: some pairs cross from the start. (Offsets off
   // the grid's round numbers: a corner exactly on another face crosses or not by rounding, in one
   // frame and not in the other.) Their crossing may slide along as the plates move, but no crossing
-  // begins away from it, and the guard never holds back every vertex (it used to freeze such meshes
+  // begins away from it, and the guard never holds back every vertex (which would freeze such a mesh
   // whole).
   gauss::TriangleMesh m = plates_swinging_together();
   for (int v = m.num_vertices() / 2; v < m.num_vertices(); ++v) {
@@ -217,8 +217,8 @@ TEST(SelfIntersections, PinsDraggedIntoTheMeshStopShort) {
   }
 }
 
-TEST(SelfIntersections, TheCleanMeshesOfTheIssueStayClean) {
-  // Spot under the Cube style at lambda 20 crossed itself in 70 pairs without the guard.
+TEST(SelfIntersections, CleanMeshesThatAStrongStyleFoldsStayClean) {
+  // Spot under the Cube style at lambda 20 crosses itself without the guard.
   const std::string spot = gauss_test::shared_mesh("small/spot_triangulated_2930.obj");
   if (!std::ifstream(spot).good()) GTEST_SKIP() << "../shared/meshes not present";
   const gauss::TriangleMesh m = gauss::read_mesh(spot);

@@ -489,7 +489,7 @@ TEST(SelfIntersectionShortcuts, SharedMeshesJitteredAsBruteForce) {
 // --- What took the place of the fallback that returned every vertex. ---
 
 TEST(SelfIntersectionShortcuts, AContactAlreadyAtSafeHoldsOnlyItsCornersAndEnds) {
-  // The guard used to take every vertex back after 32 rounds; now only the corners of faces in a new
+  // The guard takes no vertex back wholesale: only the corners of faces in a new
   // contact step back, down to `safe`, and a contact `safe` itself has (a start the guard was not told
   // of) ends the loop there. Two sheets of which the second is moved into the first, the guard started
   // from them apart: told to limit a move from the crossing state, it ends with every new contact

@@ -5,6 +5,8 @@ import subprocess
 import sys
 import textwrap
 
+import pytest
+
 from conftest import REPO
 
 SUITE = '''
@@ -55,3 +57,13 @@ def test_the_release_wheels_may_lack_the_shared_meshes(tmp_path):
     run = _run(tmp_path, CI="true", GAUSS_RELEASE_WHEEL_TESTS="1")
     assert run.returncode == 0, run.stdout
     assert "1 passed, 2 skipped" in run.stdout
+
+
+@pytest.mark.parametrize("suite", ["tests/python", "tests/farm"])
+def test_every_plain_pytest_suite_loads_the_plugin(suite):
+    # Each suite's conftest.py must load it, or a skip there passes silently under CI=true; a run of the
+    # conftest alone collects no test (nothing is imported but it) and still prints the plugin's totals.
+    environment = {k: v for k, v in os.environ.items() if k != "CI"}
+    run = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
+                          str(REPO / suite / "conftest.py")], cwd=REPO, env=environment, capture_output=True, text=True)
+    assert "skipped: 0, 0 of them on the allow-list" in run.stdout, run.stdout + run.stderr

@@ -84,8 +84,8 @@ def _two_spheres_askew(offset, levels=3):
 def test_a_mesh_that_already_crosses_itself_is_held_only_where_it_crosses(offset):
     # Two spheres pushed into one another: the input crosses itself, as many artists' meshes do. Their
     # crossing may slide on as the surface moves, but no crossing begins elsewhere, and only vertices
-    # near the crossing are ever held: the rest stylizes as without the guard (it used to freeze every
-    # vertex: all were held back at some step).
+    # near the crossing are ever held: the rest stylizes as without the guard (holding every vertex
+    # back at some step would freeze the whole mesh).
     V, F = _two_spheres_askew(offset)
     before = gauss_core.self_intersections(V, F)
     assert len(before) > 0

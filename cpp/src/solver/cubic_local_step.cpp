@@ -237,9 +237,8 @@ void CubicLocalStep::fit(const MeshTopology& topo, const std::vector<Matrix3d>& 
           continue;
         }
         // At an extrapolated state the first iteration's primal residual measures the extrapolation
-        // (z was pushed ahead of R n): balancing rho on it raised rho fourfold on the 35K bunny, which
-        // slowed the cubic term's pull until the run stopped short of the plain result (share 0.52
-        // against 0.55).
+        // (z was pushed ahead of R n): balancing rho on it would raise rho and slow the cubic term's pull
+        // until the run stops short of the plain result (docs/performance.md#converging-in-fewer-steps).
         if (!(a.it == 1 && extrapolated)) {
           if (primal2 > kMu * kMu * dual2 && a.rho * kTau <= kMaxRho) {
             a.rho *= kTau;

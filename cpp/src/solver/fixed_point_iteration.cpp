@@ -12,7 +12,7 @@ using Eigen::Vector3d;
 double relative_change(const std::vector<Vector3d>& from, const std::vector<Vector3d>& to,
                        const std::vector<Vector3d>& rest, double size) {
   // Maxima do not depend on the order they are taken in: serial is as deterministic as it is cheap
-  // (two passes over #V, ~1% of a step).
+  // (two passes over #V; its share of a step: docs/performance.md#figures-behind-the-codes-choices).
   double change = 0.0, displacement = 0.0;
   const size_t n = to.size();
   for (size_t v = 0; v < n; ++v) {

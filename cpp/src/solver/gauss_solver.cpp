@@ -32,7 +32,7 @@ constexpr int64_t kSetupBytesPerFace = 360, kSetupBytesPerVertex = 320;
 
 // Bending stiffness per unit area and squared curvature, of ARAP (per unit face area: kArapBending a
 // kappa^2) and of the term sum_ij w_ij |R_i - R_j|^2 (kSmoothBending kappa^2), from a triangle lattice
-// bent into a cylinder (docs/resolution.md#bending).
+// bent into a cylinder (docs/resolution.md#bending-araps-stiffness-shrinks-with-the-edge-length).
 constexpr double kArapBending = 0.63, kSmoothBending = 2.0;
 
 // How many half-sizes of the reach box (gauss_solver.h) a step's result may lie from its centre before

@@ -46,7 +46,8 @@ VolumeKeeper::VolumeKeeper(const MeshTopology& topo, const std::vector<Vector3d>
 }
 
 void VolumeKeeper::measure(const MeshTopology& topo, const std::vector<Vector3d>& X) {
-  // Serial sums in a fixed order: the same result for any thread count (a pass over #F, ~2% of a step).
+  // Serial sums in a fixed order: the same result for any thread count (a pass over #F, cheap:
+  // docs/performance.md#figures-behind-the-codes-choices).
   std::fill(centroid_.begin(), centroid_.end(), Vector3d::Zero());
   std::fill(count_.begin(), count_.end(), 0);
   std::fill(size_.begin(), size_.end(), 0.0);

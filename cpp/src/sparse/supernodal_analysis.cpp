@@ -13,8 +13,8 @@ namespace {
 // Relaxed amalgamation: a supernode merges into its parent when the merged block has at most this
 // share of explicit zeros for its width. Wider blocks make the dense kernels faster, but every step's
 // sweeps read every zero: these limits, tighter than CHOLMOD's defaults (which merge any block of up
-// to 4 columns and allow 80% zeros up to 16), store 6% fewer values on the 501K mesh and solve 5%
-// faster at the same factorization time (docs/performance.md, Set-up at scale).
+// to 4 columns and allow 80% zeros up to 16), store fewer values and solve faster at the same
+// factorization time (measured: docs/performance.md#set-up-at-scale).
 bool worth_merging(int64_t width, double zero_share) {
   if (width <= 4) return zero_share < 0.3;
   if (width <= 16) return zero_share < 0.2;

@@ -85,8 +85,9 @@ KernelSystem::KernelSystem(const std::vector<Vector3d>& nodes, double sigma, dou
         m(x, y) = m(y, x) = (t >= cutoff ? std::exp(sigma * (t - 1.0)) : 0.0) + (x == y ? ridge : 0.0);
       }
     // Stored as the inverse: applying it is then a dense product whose columns vectorize, where the
-    // two triangular solves of a Cholesky factor ran one long dependency chain (measured: 40% slower
-    // overall). With the ridge the block's condition number stays below ~1e4: the inverse is accurate.
+    // two triangular solves of a Cholesky factor run one long dependency chain (measured:
+    // docs/performance.md#figures-behind-the-codes-choices). With the ridge the block's condition
+    // number stays below ~1e4: the inverse is accurate.
     const Eigen::LLT<Eigen::MatrixXd> llt(m);
     usable[p] = llt.info() == Eigen::Success;
     if (usable[p]) m = llt.solve(Eigen::MatrixXd::Identity(b, b));

@@ -50,8 +50,8 @@ namespace gauss {
 inline constexpr double kContactMargin = 1e-4;
 // The longest move of a vertex checked at once (normalized frame): a longer step or pin move (a
 // handle dragged far in one go) is checked in stages, so that it cannot jump through a part thicker
-// than this. 2% of the mesh's size: at 0.5% the first steps of a strong style took several stages,
-// and the guard cost 4 times a step on the 35K bunny.
+// than this. 2% of the mesh's size, because smaller stages multiply the guard's cost on a strong
+// style's first steps (measured: docs/performance.md#the-guards-cost).
 inline constexpr double kStageMove = 2e-2;
 
 // The unordered pairs of faces that cross, #P by 2 (f < g, indices into faces, sorted). faces: #F by 3

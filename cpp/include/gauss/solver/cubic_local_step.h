@@ -55,8 +55,8 @@ inline constexpr double kRelTol = 1e-3;    // relative tolerance of both residua
 inline constexpr double kMu = 10.0;        // residual balancing: change rho when one residual is kMu times the other
 inline constexpr double kTau = 2.0;        // ... by this factor
 inline constexpr int kMaxIterations = 100; // per vertex and step
-// Safety bounds (not in the reference), far outside where rho settles (35K bunny: rho ~2e-3 where
-// lambda_i ~1e-5).
+// Safety bounds (not in the reference), far outside where rho settles
+// (docs/performance.md#fidelity-to-the-cubic-reference).
 inline constexpr double kMinRho = 1e-12, kMaxRho = 1e12;
 }  // namespace cubic_admm
 

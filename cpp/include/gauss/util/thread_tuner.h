@@ -3,7 +3,8 @@
 //
 // Why: a parallel loop waits for its slowest thread. When other processes hold the cores (a render,
 // a compile, Blender's own jobs), a descheduled worker stalls every loop of the step; with OpenMP's
-// spinning barriers a step on 2 threads was measured 10 to 40 times slower than on 1.
+// spinning barriers a step on 2 threads can be many times slower than on 1 (measured:
+// docs/performance.md#figures-behind-the-codes-choices).
 // Steps are bit-identical for any thread count, so choosing by speed never changes a result.
 // Policy: try both, then keep the faster (with 10% hysteresis) and re-try the other one every
 // kProbeInterval steps, so the choice follows the machine's load.
