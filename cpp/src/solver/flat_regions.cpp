@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -18,6 +19,9 @@ constexpr double kPi = 3.14159265358979323846;
 // kTieShare of the smallest's area count as equally small (a 32-gon's differ by 0.5%).
 constexpr double kAngleStep = 0.25;
 constexpr double kTieShare = 0.01;
+// A region of fewer faces has an outline of a few straight edges: nothing to square, and pulling it
+// would only hold a coarse mesh back from its style.
+constexpr int kMinFlatFaces = 12;
 // A face whose normal has less than this part in the region's plane takes its outline's direction.
 constexpr double kMinWallShare = 0.1;
 
@@ -104,7 +108,7 @@ SquareTargets square_targets(const MeshTopology& topo, const std::vector<Vector3
       }
     }
     region_faces.push_back(members);
-    if (region_area < kMinAreaShare * total) {  // small: in no region (-2), and not seeded again
+    if (region_area < kMinAreaShare * total || static_cast<int>(members.size()) < kMinFlatFaces) {  // in none (-2)
       for (int f : members) region_of[f] = -2;
       region_faces.back().clear();
     }
@@ -121,7 +125,9 @@ SquareTargets square_targets(const MeshTopology& topo, const std::vector<Vector3
   }
   std::vector<double> distance(nV, INFINITY), best_face_distance(nF, INFINITY);
   std::vector<int> source(nV, -1);                       // the outline vertex nearest each band vertex
-  std::vector<Vector3d> outward(nV, Vector3d::Zero());   // per outline vertex
+  std::vector<double> turn(nV, 0.0);                      // per outline vertex: its edges' mean turn
+  std::vector<int> turn_count(nV, 0);
+  std::vector<std::pair<std::array<int, 2>, Vector3d>> outline;  // outline edges and their outward directions
   std::vector<int> touched, target_of(nF, -1);  // target_of: index into out's face lists
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
@@ -132,9 +138,10 @@ SquareTargets square_targets(const MeshTopology& topo, const std::vector<Vector3
     Vector3d sum = Vector3d::Zero();
     for (int f : faces) sum += area[f] * normal[f], region.area += area[f];
     region.normal = sum.normalized();
-    // The outline: vertices of edges with one face of the region, each with its outward direction in
-    // the plane (the sum over its outline edges of edge x normal, the face running the edge forwards).
+    // The outline: edges with one face of the region, each with its outward direction in the plane
+    // (edge x normal, the face running the edge forwards).
     touched.clear();
+    outline.clear();
     for (int f : faces)
       for (int k = 0; k < 3; ++k) {
         const int e = topo.face_edge[f][k];
@@ -143,14 +150,9 @@ SquareTargets square_targets(const MeshTopology& topo, const std::vector<Vector3
           inside += region_of[topo.edge_slots[i] / 3] == static_cast<int>(r);
         if (inside != 1) continue;
         const int a = topo.faces[f][k], b = topo.faces[f][(k + 1) % 3];
-        const Vector3d out_dir = (X[b] - X[a]).cross(region.normal);
-        for (int v : {a, b}) {
-          if (distance[v] != 0.0) {
-            distance[v] = 0.0, source[v] = v, outward[v] = Vector3d::Zero();
-            touched.push_back(v), queue.push({0.0, v});
-          }
-          outward[v] += out_dir;
-        }
+        outline.push_back({{a, b}, (X[b] - X[a]).cross(region.normal)});
+        for (int v : {a, b})
+          if (distance[v] != 0.0) distance[v] = 0.0, source[v] = v, touched.push_back(v), queue.push({0.0, v});
       }
     const Vector3d e1 = any_orthogonal(region.normal), e2 = region.normal.cross(e1);
     // The reference: the object's axis that lies most in the plane.
@@ -171,6 +173,20 @@ SquareTargets square_targets(const MeshTopology& topo, const std::vector<Vector3
     const double a = angle * kPi / 180.0;
     region.u = std::cos(a) * e1 + std::sin(a) * e2;
     region.v = region.normal.cross(region.u);
+    // The turn about the normal that takes a direction in the plane onto the nearest of +-u, +-v.
+    const auto turn_to_axes = [&](const Vector3d& dir) {
+      Vector3d axis = region.u;
+      for (const Vector3d& c : {Vector3d(-region.u), region.v, Vector3d(-region.v)})
+        if (c.dot(dir) > axis.dot(dir)) axis = c;
+      return std::atan2(dir.cross(axis).dot(region.normal), dir.dot(axis));
+    };
+    // Each outline vertex turns by its edges' mean turn: a corner of two edges that already lie along
+    // the axes does not turn (its own outward direction, their diagonal, would be a tie).
+    for (const auto& [ends, dir] : outline) {
+      if (!(dir.norm() > 0)) continue;
+      const double t = turn_to_axes(dir);
+      for (int v : ends) turn[v] += t, ++turn_count[v];
+    }
 
     // The band: Dijkstra from the outline along edges, up to its width.
     const double width = kBandWidth * std::sqrt(region.area);
@@ -212,23 +228,23 @@ SquareTargets square_targets(const MeshTopology& topo, const std::vector<Vector3
         const auto& t = topo.faces[f];
         const double d = (distance[t[0]] + distance[t[1]] + distance[t[2]]) / 3.0;
         if (!(d < width) || !(d < best_face_distance[f])) continue;
-        // The direction to square: a wall's own normal in the plane, else its outline's outward direction.
+        // The turn: a wall's own, from its normal in the plane; a face of the region (or one nearly
+        // parallel to it) its nearest outline's.
         const Vector3d& n = normal[f];
-        Vector3d dir = n - n.dot(region.normal) * region.normal;
+        const Vector3d dir = n - n.dot(region.normal) * region.normal;
+        double angle = 0;
         if (region_of[f] == static_cast<int>(r) || dir.norm() < kMinWallShare) {
-          dir = Vector3d::Zero();
+          int count = 0;
           for (int c : t)
-            if (source[c] >= 0) dir += outward[source[c]].normalized();
+            if (source[c] >= 0 && turn_count[source[c]] > 0) angle += turn[source[c]] / turn_count[source[c]], ++count;
+          if (count == 0) continue;
+          angle /= count;
+        } else {
+          angle = turn_to_axes(dir);
         }
-        if (!(dir.norm() > 1e-9)) continue;
-        dir.normalize();
-        Vector3d axis = region.u;
-        for (const Vector3d& c : {Vector3d(-region.u), region.v, Vector3d(-region.v)})
-          if (c.dot(dir) > axis.dot(dir)) axis = c;
-        const double turn = std::atan2(dir.cross(axis).dot(region.normal), dir.dot(axis));
-        add(f, Eigen::AngleAxisd(turn, region.normal).toRotationMatrix(), area[f] * (1.0 - d / width), d);
+        add(f, Eigen::AngleAxisd(angle, region.normal).toRotationMatrix(), area[f] * (1.0 - d / width), d);
       }
-    for (int v : touched) distance[v] = INFINITY, source[v] = -1;
+    for (int v : touched) distance[v] = INFINITY, source[v] = -1, turn[v] = 0, turn_count[v] = 0;
   }
   return out;
 }

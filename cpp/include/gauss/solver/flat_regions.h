@@ -1,10 +1,10 @@
 #pragma once
 // Square Flat Regions (settings::square_flat_regions): the large flat regions of the rest mesh, the
-// axes their outlines should square to, and for the faces around each one the normal that squares it.
+// axes their outlines should square to, and for the faces around each one the turn that squares it.
 //
 // A flat region is a set of edge-connected faces whose normals lie within kFlatDegrees of the first
-// face's (and of the face they were reached from), of at least kMinAreaShare of the mesh's area. Its
-// axes u, v are those of the smallest rectangle around its outline, in its plane; an outline with no
+// face's (and of the face they were reached from), of at least kMinAreaShare of the mesh's area (and a
+// dozen faces). Its axes u, v are those of the smallest rectangle around its outline, in its plane; an outline with no
 // clear smallest rectangle (a circle, a regular polygon) takes the one closest to the object's own
 // axes. Each face within a band around the region (kBandWidth times the square root of the region's
 // area, measured along edges from its outline, on both sides of it) is asked to turn about the
