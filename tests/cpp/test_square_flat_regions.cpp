@@ -92,16 +92,19 @@ TEST(SquareFlatRegions, SquaresTheLidOfAPot) {
 }
 
 TEST(SquareFlatRegions, LeavesACubeAndASphereAlone) {
-  // A cube's faces are its flat regions and already square; a sphere has none: on changes (almost) nothing.
-  for (const gauss::TriangleMesh& m : {gauss_test::grid_cube(4), gauss_test::icosphere(3)})
-    for (const Case& c : kCases) {
-      GaussSolver a = make(m, c), b = make(m, c);
+  // A cube's faces are its flat regions and already square: on moves it by a hair at most. A sphere has
+  // none: on steps bit for bit as off.
+  const gauss::TriangleMesh cube = gauss_test::grid_cube(4), sphere = gauss_test::icosphere(3);
+  for (const Case& c : kCases)
+    for (const gauss::TriangleMesh* m : {&cube, &sphere}) {
+      GaussSolver a = make(*m, c), b = make(*m, c);
       b.set_square_flat_regions(true);
       for (int i = 0; i < 20; ++i) a.step(), b.step();
-      const std::vector<double> x = result(a, m.num_vertices()), y = result(b, m.num_vertices());
+      const std::vector<double> x = result(a, m->num_vertices()), y = result(b, m->num_vertices());
       double d = 0;
       for (size_t i = 0; i < x.size(); ++i) d = std::max(d, std::abs(x[i] - y[i]));
-      EXPECT_LT(d, 1e-6) << m.num_vertices() << " " << static_cast<int>(c.method);
+      if (m == &sphere) EXPECT_EQ(d, 0.0) << static_cast<int>(c.method);
+      else EXPECT_LT(d, 0.01) << static_cast<int>(c.method);  // the cube's side is 2
     }
 }
 
