@@ -1,6 +1,6 @@
 // gauss_bench MESH [--method gauss|cubic] [--style NAME] [--lambda L] [--sigma S] [--mu M] [--steps N]
 //             [--admm N] [--until TOL] [--acceleration on|off] [--avoid-self-intersections]
-//             [--resolution-independent [--reference-face-area A]]
+//             [--resolution-independent [--reference-face-area A]] [--square-flat-regions]
 //             [--threads N] [--out OUT.obj]   (defaults: the solver's, printed by usage())
 // Times set-up and steps of the solver on one mesh and reports how far the style took hold.
 // --lambda is the lambda of the chosen method (settings::lambda or settings::cubic_lambda); the cubic
@@ -18,6 +18,9 @@
 // settings::sheet_metal_lambda unless --lambda says otherwise. Every run prints
 // developability: IN -> OUT (mesh/developability.h) and flat_vertices_share: IN -> OUT, the share of
 // interior vertices whose angle defect is below 0.01 rad (mesh/flat_vertex_share.h).
+// --square-flat-regions squares the outlines of large flat regions (settings::square_flat_regions,
+// flat_regions.h). Every run on a mesh with a large flat region prints squareness: IN -> OUT, the
+// squareness (mesh/squareness.h) of the faces facing along the largest region's normal.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -33,6 +36,9 @@
 #include "gauss/mesh/alignment_share.h"
 #include "gauss/mesh/developability.h"
 #include "gauss/mesh/flat_vertex_share.h"
+#include "gauss/mesh/mesh_topology.h"
+#include "gauss/mesh/squareness.h"
+#include "gauss/solver/flat_regions.h"
 #include "gauss/solver/gauss_solver.h"
 #include "gauss/mesh/mesh_io.h"
 #include "gauss/util/parallel.h"
@@ -56,7 +62,7 @@ int usage() {
                "usage: gauss_bench MESH [--method %s] [--style %s] [--lambda %g (cubic: %g)] [--sigma %g] [--mu %g]\n"
                "                   [--steps %d] [--admm %d] [--until TOL (e.g. %g; then --steps is the cap, default %d)]\n"
                "                   [--acceleration %s] [--avoid-self-intersections] [--resolution-independent]\n"
-               "                   [--reference-face-area A (default %g)]\n"
+               "                   [--reference-face-area A (default %g)] [--square-flat-regions]\n"
                "                   [--threads N] [--out OUT.obj]\n",
                settings::default_method, settings::default_preset, settings::lambda.default_value,
                settings::cubic_lambda.default_value, settings::sigma.default_value, settings::mu.default_value,
@@ -82,6 +88,7 @@ int main(int argc, char** argv) {
   bool avoid_self_intersections = settings::avoid_self_intersections.default_value;
   bool resolution_independent = settings::resolution_independent.default_value;
   double reference_face_area = settings::reference_face_area;
+  bool square_flat_regions = settings::square_flat_regions.default_value;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--avoid-self-intersections") {  // a flag without a value
@@ -90,6 +97,10 @@ int main(int argc, char** argv) {
     }
     if (a == "--resolution-independent") {
       resolution_independent = true;
+      continue;
+    }
+    if (a == "--square-flat-regions") {
+      square_flat_regions = true;
       continue;
     }
     if (i + 1 >= argc) return usage();
@@ -143,6 +154,7 @@ int main(int argc, char** argv) {
     solver.set_avoid_self_intersections(avoid_self_intersections);
     solver.set_resolution_independent(resolution_independent);
     solver.set_reference_face_area(reference_face_area);
+    solver.set_square_flat_regions(square_flat_regions);
     const double setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
     if (until_converged) solver.set_tolerance(until);  // held_back() compares with it
@@ -208,6 +220,21 @@ int main(int argc, char** argv) {
     std::printf("flat_vertices_share: %.4f -> %.4f\n",
                 gauss::flat_vertex_share(mesh.V.data(), mesh.num_vertices(), mesh.F.data(), mesh.num_faces()),
                 gauss::flat_vertex_share(result.data(), mesh.num_vertices(), mesh.F.data(), mesh.num_faces()));
+    {
+      // The largest flat region of the input (the solver's own search), whose normal is "up".
+      const gauss::MeshTopology topo = gauss::build_mesh_topology(mesh.num_vertices(), mesh.F.data(), mesh.num_faces());
+      std::vector<Eigen::Vector3d> rest(mesh.num_vertices());
+      for (int v = 0; v < mesh.num_vertices(); ++v) rest[v] = Eigen::Vector3d(&mesh.V[3 * static_cast<size_t>(v)]);
+      const gauss::SquareTargets regions = gauss::square_targets(topo, rest);
+      std::printf("square_flat_regions: %s (%d large flat regions)\n", square_flat_regions ? "on" : "off",
+                  static_cast<int>(regions.regions.size()));
+      if (!regions.regions.empty()) {
+        const auto largest = std::max_element(regions.regions.begin(), regions.regions.end(),
+                                              [](const auto& a, const auto& b) { return a.area < b.area; });
+        std::printf("squareness: %.4f -> %.4f\n", gauss::squareness(mesh.V.data(), mesh.F.data(), mesh.num_faces(), largest->normal),
+                    gauss::squareness(result.data(), mesh.F.data(), mesh.num_faces(), largest->normal));
+      }
+    }
     std::vector<std::array<int, 3>> triangles;  // the input's faces without a repeated corner
     for (int f = 0; f < mesh.num_faces(); ++f) {
       const int64_t* t = &mesh.F[3 * static_cast<size_t>(f)];

@@ -55,6 +55,7 @@ class Option:
 
 
 GUARD = {"avoid_self_intersections": True}
+SQUARE = {"square_flat_regions": True}
 
 OPTIONS = [
     Option("cube"),
@@ -69,6 +70,8 @@ OPTIONS = [
     Option("cube painted 0-1", weights=gradient_weights, tags=("paint",), plain="cube"),
     Option("cube pinned 5%", pins=lowest_vertices(0.05), plain="cube"),
     Option("sheet metal", preset="sheet_metal"),
+    Option("cube +square flat", keywords=SQUARE, tags=("square",), plain="cube"),
+    Option("cubic +square flat", method="cubic", keywords=SQUARE, tags=("square",), plain="cubic"),
 ]
 
 

@@ -71,6 +71,17 @@ def uv_sphere(segments=32, rings=16):
     return object_from_bmesh(bm, "Sphere")
 
 
+def capped_cylinder():
+    """The capped 32-sided cylinder of tests/common/flat_meshes.py (two large flat regions), active."""
+    from flat_meshes import capped_cylinder as make
+    V, F = make()
+    mesh = bpy.data.meshes.new("Cylinder")
+    mesh.from_pydata(V.tolist(), [], F.tolist())
+    obj = bpy.data.objects.new("Cylinder", mesh)
+    bpy.context.scene.collection.objects.link(obj)
+    return activate(obj)
+
+
 def import_obj(relative):
     """A mesh of ../shared/meshes, imported and active."""
     return scene_kit.import_obj(os.path.join(MESHES, relative))

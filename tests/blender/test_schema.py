@@ -106,6 +106,11 @@ LIVE_CHANGES = {
     # Suzanne's eyes touch her head: at lambda 20 the guard holds them back.
     ("object", "avoid_self_intersections"): ({}, dict(lam=20.0), True),
     ("object", "resolution_independent"): ({}, {}, False),  # on for a new object
+    ("object", "square_flat_regions"): ({}, {}, True),  # on the mesh of LIVE_MESHES
+}
+# The mesh a live change is tried on where Suzanne would not show it (default: helpers.suzanne(levels=1)).
+LIVE_MESHES = {
+    ("object", "square_flat_regions"): helpers.capped_cylinder,  # Suzanne has no large flat region
 }
 # Live settings that change what the solver says about the shape, not the shape: the value changed to.
 LIVE_READOUTS = {
@@ -141,7 +146,7 @@ def test_a_readout_setting_changed_mid_run_reaches_the_solver(addon, owner, name
 @pytest.mark.parametrize("owner, name", sorted(LIVE_CHANGES), ids=["-".join(k) for k in sorted(LIVE_CHANGES)])
 def test_a_setting_changed_mid_run_reaches_the_solver(addon, owner, name):
     slot_spec, object_settings, changed = LIVE_CHANGES[owner, name]
-    obj = helpers.suzanne(levels=1)
+    obj = LIVE_MESHES[owner, name]() if (owner, name) in LIVE_MESHES else helpers.suzanne(levels=1)
     start = helpers.coords(obj)
     helpers.add_group(obj, "Top", np.flatnonzero(start[:, 2] > 0))
     helpers.add_group(obj, "Pins", np.flatnonzero(start[:, 2] > 0.3))

@@ -89,3 +89,26 @@ def developability(V, F):
     used = total > 0
     smallest = np.linalg.eigvalsh(moment[used] / total[used][:, None, None])[:, 0]
     return float(np.maximum(smallest, 0.0).mean())
+
+
+def squareness(V, F, up=(0.0, 0.0, 1.0), degrees=10.0):
+    """Area of the faces within ``degrees`` of ``up`` over the area of the smallest square (any
+    orientation about ``up``) holding their vertices: 1 for a square cap, pi/4 for a round one, 0 when
+    no face faces up. The same measure as cpp/include/gauss/mesh/squareness.h."""
+    F = np.asarray(F)
+    n, twice_area = face_normals(V, F)
+    up = np.asarray(up, np.float64) / np.linalg.norm(up)
+    facing = (twice_area > 0) & (n @ up >= np.cos(np.radians(degrees)))
+    if not facing.any():
+        return 0.0
+    a = np.array([1.0, 0.0, 0.0]) if abs(up[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    e1 = a - a.dot(up) * up
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(up, e1)
+    P = np.asarray(V, np.float64)[np.unique(F[facing])]
+    p = np.stack([P @ e1, P @ e2], axis=1)
+    t = np.radians(np.arange(900) * 0.1)
+    x = p @ np.stack([np.cos(t), np.sin(t)])  # (#P, 900): coordinates along each orientation's axes
+    y = p @ np.stack([-np.sin(t), np.cos(t)])
+    side = np.maximum(np.ptp(x, axis=0), np.ptp(y, axis=0)).min()
+    return float(0.5 * twice_area[facing].sum() / side ** 2) if side > 0 else 0.0

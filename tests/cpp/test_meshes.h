@@ -100,4 +100,60 @@ inline std::vector<Eigen::Vector3d> points_of(const std::vector<double>& flat) {
   return p;
 }
 
+// A surface of revolution about z with `sides` sides (tests/common/flat_meshes.py builds the same):
+// profile (r, z) from bottom to top; an end at r == 0 is a pole, an end at r > 0 is closed by a flat
+// disk of `disk_rings` rings. Outward normals.
+inline gauss::TriangleMesh revolve(const std::vector<std::array<double, 2>>& profile, int sides, int disk_rings) {
+  std::vector<std::array<double, 2>> rings;  // (r, z) from bottom to top; r == 0 is a pole
+  const auto disk = [&](double r, double z, bool inward) {  // the rings inside radius r, a pole at the centre
+    for (int i = 0; i < disk_rings; ++i) {
+      const int k = inward ? disk_rings - 1 - i : i;
+      rings.push_back({r * k / disk_rings, z});
+    }
+  };
+  if (profile.front()[0] > 0) disk(profile.front()[0], profile.front()[1], false);
+  rings.insert(rings.end(), profile.begin(), profile.end());
+  if (profile.back()[0] > 0) disk(profile.back()[0], profile.back()[1], true);
+  gauss::TriangleMesh m;
+  std::vector<int> start;
+  for (const auto& ring : rings) {
+    start.push_back(m.num_vertices());
+    const int n = ring[0] > 0 ? sides : 1;
+    for (int j = 0; j < n; ++j) {
+      const double a = 2 * 3.14159265358979323846 * j / sides;
+      m.V.insert(m.V.end(), {ring[0] * std::cos(a), ring[0] * std::sin(a), ring[1]});
+    }
+  }
+  for (size_t i = 0; i + 1 < rings.size(); ++i)
+    for (int j = 0; j < sides; ++j) {
+      const int k = (j + 1) % sides;
+      const bool pole_a = rings[i][0] == 0, pole_b = rings[i + 1][0] == 0;
+      const int a0 = start[i] + (pole_a ? 0 : j), a1 = start[i] + (pole_a ? 0 : k);
+      const int b0 = start[i + 1] + (pole_b ? 0 : j), b1 = start[i + 1] + (pole_b ? 0 : k);
+      if (!pole_a) m.F.insert(m.F.end(), {a0, a1, b1});
+      if (!pole_b) m.F.insert(m.F.end(), {a0, b1, b0});
+    }
+  return m;
+}
+
+// A capped cylinder of radius 1 and height 2 with 32 sides, subdivided: 16 rows, caps of 8 rings.
+inline gauss::TriangleMesh capped_cylinder() {
+  std::vector<std::array<double, 2>> profile;
+  for (int i = 0; i <= 16; ++i) profile.push_back({1.0, -1.0 + 2.0 * i / 16});
+  return revolve(profile, 32, 8);
+}
+
+// A pot: a round belly (radius 1.2) closed at the bottom, a short upright neck of radius 0.72, and a
+// flat lid, the one flat region, smaller than the belly.
+inline gauss::TriangleMesh pot() {
+  std::vector<std::array<double, 2>> profile;
+  const double top = std::acos(-0.8);
+  for (int i = 0; i <= 20; ++i) {
+    const double t = top * i / 20;
+    profile.push_back({1.2 * std::sin(t), -0.1 - std::cos(t)});
+  }
+  for (int i = 1; i <= 3; ++i) profile.push_back({1.2 * 0.6, 0.7 + 0.2 * i / 3});
+  return revolve(profile, 32, 6);
+}
+
 }  // namespace gauss_test

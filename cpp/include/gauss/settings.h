@@ -126,8 +126,15 @@ inline constexpr Option resolution_independent{
     "reference, so lam (and cubic_lambda) mean the same on a coarse and a subdivided mesh "
     "(docs/resolution.md). False: the paper's method, bit for bit."};
 
+// Off by default: the paper's method has no notion of regions (flat_regions.h).
+inline constexpr Option square_flat_regions{
+    "square_flat_regions", false,
+    "Give the large flat regions of the rest mesh straight, square outlines instead of round ones, for both "
+    "methods: the faces around each region turn about its normal towards the axes of its outline "
+    "(docs/styles.md, 'Square Flat Regions'). False: no change, bit for bit."};
+
 inline constexpr const Option* options[] = {&keep_volume, &acceleration, &avoid_self_intersections,
-                                            &resolution_independent};
+                                            &resolution_independent, &square_flat_regions};
 
 // The face area (solver frame: longest bounding-box side 1) at which Resolution Independent changes
 // nothing; finer meshes are stylized as a mesh of this density is. Why this value:
@@ -219,7 +226,9 @@ constexpr auto solver_settings() {
                          row(avoid_self_intersections, &Solver::avoid_self_intersections,
                              &Solver::set_avoid_self_intersections),
                          row(resolution_independent, &Solver::resolution_independent,
-                             &Solver::set_resolution_independent));
+                             &Solver::set_resolution_independent),
+                         row(square_flat_regions, &Solver::square_flat_regions,
+                             &Solver::set_square_flat_regions));
 }
 
 // Every scalar read-out of the solver (arrays, dicts and methods are bound by hand in cpp/python/).

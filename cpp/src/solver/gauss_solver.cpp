@@ -35,6 +35,11 @@ constexpr int64_t kSetupBytesPerFace = 360, kSetupBytesPerVertex = 320;
 // bent into a cylinder (docs/resolution.md#bending-araps-stiffness-shrinks-with-the-edge-length).
 constexpr double kArapBending = 0.63, kSmoothBending = 2.0;
 
+// Square Flat Regions' pull per unit area of a face (flat_regions.h), against ARAP's covariance, which a
+// face's area alone scales: strong enough to turn the walls of a round cap's rim to its axes at the
+// default strengths of both methods (docs/styles.md#square-flat-regions).
+constexpr double kSquarePull = 4.0;
+
 // How many half-sizes of the reach box (gauss_solver.h) a step's result may lie from its centre before
 // the step counts as running away: stylized shapes stay inside the box or close to it, and the fuzzing's
 // contract allows 20 (10 sizes).
@@ -247,8 +252,26 @@ void GaussSolver::fit_rotations() {
   });
 }
 
+void GaussSolver::update_square_prior() {
+  if (!square_flat_regions_) {
+    square_ = {};
+    square_prior_ = {};
+    return;
+  }
+  if (square_.face.empty() && square_.regions.empty()) square_ = square_targets(topo_, rest_);
+  square_prior_.assign(topo_.num_vertices, Matrix3d::Zero());
+  for (size_t i = 0; i < square_.face.size(); ++i) {
+    const int f = square_.face[i], s = face_style_[f];
+    const double mu = s == -1 ? 0.0 : s >= 0 ? styles_[s].mu() * face_weight_[f] : blend_mu_[-2 - s];
+    if (!(mu > 0)) continue;
+    // The fit maximizes tr(R^T M): this term rewards R near the face's squaring rotation.
+    const Matrix3d pull = (kSquarePull * mu * square_.weight[i]) * square_.rotation[i];
+    for (int v : topo_.faces[f]) square_prior_[v] += pull;
+  }
+}
+
 const Matrix3d* GaussSolver::rotation_prior() {
-  if (!resolution_independent_) return nullptr;
+  if (!resolution_independent_ && !square_flat_regions_) return nullptr;
   // The bending term beta sum_ij w_ij |R_i - R_j|^2 (docs/resolution.md) adds beta w_ij R_j to vertex i's
   // rotation fit; R_j from the previous step, so that every vertex fits at once. The cubic method's
   // covariance weights each half-edge by the whole edge weight, twice ARAP's spokes and rims, and so
@@ -258,13 +281,15 @@ const Matrix3d* GaussSolver::rotation_prior() {
   rotation_prior_.resize(nV);
   parallel::for_each(nV, parallel::kMinParallelItems, [&](int v) {
     Matrix3d P = Matrix3d::Zero();
-    for (int i = topo_.vertex_corner_start[v]; i < topo_.vertex_corner_start[v + 1]; ++i) {
-      const int c = topo_.vertex_corners[i], f = c / 3, k = c % 3;
-      const auto& t = topo_.faces[f];
-      // Corner k heads slot k (to corner k+1) and ends slot k+2 (from corner k+2).
-      P += (factor * bending_weight_[f][k]) * rotation_[t[(k + 1) % 3]];
-      P += (factor * bending_weight_[f][(k + 2) % 3]) * rotation_[t[(k + 2) % 3]];
-    }
+    if (resolution_independent_)
+      for (int i = topo_.vertex_corner_start[v]; i < topo_.vertex_corner_start[v + 1]; ++i) {
+        const int c = topo_.vertex_corners[i], f = c / 3, k = c % 3;
+        const auto& t = topo_.faces[f];
+        // Corner k heads slot k (to corner k+1) and ends slot k+2 (from corner k+2).
+        P += (factor * bending_weight_[f][k]) * rotation_[t[(k + 1) % 3]];
+        P += (factor * bending_weight_[f][(k + 2) % 3]) * rotation_[t[(k + 2) % 3]];
+      }
+    if (square_flat_regions_) P += factor * square_prior_[v];  // its pull, in ARAP's units like the bending
     rotation_prior_[v] = P;
   });
   return rotation_prior_.data();

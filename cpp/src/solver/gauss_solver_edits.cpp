@@ -42,6 +42,13 @@ void GaussSolver::set_resolution_independent(bool on) {
   iteration_.invalidate();
 }
 
+void GaussSolver::set_square_flat_regions(bool on) {
+  if (on == square_flat_regions_) return;
+  square_flat_regions_ = on;
+  update_square_prior();
+  iteration_.invalidate();
+}
+
 void GaussSolver::set_reference_face_area(double area) {
   if (!(area > 0.0 && std::isfinite(area))) throw std::invalid_argument("reference face area must be positive");
   if (area == reference_face_area_) return;

@@ -156,6 +156,7 @@ void GaussSolver::styles_changed() {
     }
   }
   update_cubic_styles();
+  if (square_flat_regions_) update_square_prior();  // its pull scales with each face's strength
   iteration_.invalidate();
 }
 

@@ -201,6 +201,10 @@ OBJECT = (
          "coarse and a fine mesh of the same shape are stylized alike (docs/resolution.md). Off: the paper's "
          "method, where a finer mesh is stylized more strongly", new_objects=True, since=2, live=Live.SETTER,
          panel=Panel.SOLVER),
+    Bool("square_flat_regions", "Square Flat Regions", "Give large flat regions (a cap, a lid, a table top) "
+         "straight, square outlines instead of round ones: the faces around each turn towards the axes of its "
+         "outline, with either method (docs/styles.md, Square Flat Regions)", live=Live.SETTER,
+         panel=Panel.SOLVER),
     Bool("use_modifiers", "Use Modifiers", "Stylize the mesh as it is shown: modifiers, armature and shape "
          "keys at the current frame (otherwise the base mesh, under the modifiers)", default=False,
          panel=Panel.MAIN),

@@ -29,6 +29,7 @@
 #include "gauss/solver/cubic_local_step.h"
 #include "gauss/solver/developable_normals.h"
 #include "gauss/solver/fixed_point_iteration.h"
+#include "gauss/solver/flat_regions.h"
 #include "gauss/solver/normal_step.h"
 #include "gauss/mesh/mesh_topology.h"
 #include "gauss/style/preference_function.h"
@@ -130,6 +131,14 @@ class GaussSolver {
   // throws std::invalid_argument unless positive and finite.
   void set_reference_face_area(double area);
   double reference_face_area() const { return reference_face_area_; }
+  // Square Flat Regions (settings::square_flat_regions, flat_regions.h): the faces around each large
+  // flat region of the rest mesh pull the rotation fit of their vertices towards turning them onto the
+  // axes of the region's outline, for both methods, scaled by each face's style strength (mu times its
+  // weight). The regions are found when it is switched on. Off: bit for bit as without it.
+  void set_square_flat_regions(bool on);
+  bool square_flat_regions() const { return square_flat_regions_; }
+  // The large flat regions found (empty while the setting is off), solver frame.
+  const std::vector<FlatRegion>& flat_regions() const { return square_.regions; }
   bool avoid_self_intersections() const { return guard_ != nullptr; }
   // Vertices the guard held back in the last step or pin move (0 when it is off).
   int held_vertices() const { return guard_ ? guard_->last_held() : 0; }
@@ -200,6 +209,7 @@ class GaussSolver {
  private:
   void compute_rest_quantities();
   void update_face_coupling();  // face_coupling_ from face_area_ and resolution_independent_
+  void update_square_prior();   // square_prior_ from square_ and the faces' styles (when on)
   // set_pins' work inside a set-up that `progress` already reports (the constructor's or set_pins').
   // Moves the pinned vertices to their targets; with the guard on, short of new contacts.
   void place_pins_guarded();
@@ -209,7 +219,8 @@ class GaussSolver {
   void face_pass();
   void fit_rotations();  // rotation_ from the covariances in face_scratch_
   // With resolution_independent: per vertex, the bending term's sum_j beta_ij w_ij R_j (R of the last
-  // step), which the rotation fits add to their covariance; nullptr when off.
+  // step), and with square_flat_regions the squaring pull square_prior_, which the rotation fits add to
+  // their covariance; nullptr when both are off.
   const Eigen::Matrix3d* rotation_prior();
   void admm_round(bool first_round);
   // The global step's right-hand side from rotation_: Eq. 27's (the Gauss method: ARAP's targets and
@@ -263,7 +274,10 @@ class GaussSolver {
   std::vector<double> face_area_;                   // #F: rest area
   std::vector<double> face_coupling_;               // #F: factor of lambda in the normal step (1 when off)
   std::vector<std::array<double, 3>> bending_weight_;  // #F by 3 while resolution_independent: beta w+ per slot
-  std::vector<Eigen::Matrix3d> rotation_prior_;       // #V while resolution_independent: the bending term's pull
+  std::vector<Eigen::Matrix3d> rotation_prior_;       // #V while either pull is on: the rotation fit's prior
+  bool square_flat_regions_ = settings::square_flat_regions.default_value;
+  SquareTargets square_;                              // while square_flat_regions: the regions and targets
+  std::vector<Eigen::Matrix3d> square_prior_;         // #V while square_flat_regions: sum k w mu t n^T
 
   // Styles.
   std::vector<PreferenceFunction> styles_;
