@@ -98,3 +98,28 @@ def dominant_directions(gauss_core, normals, areas, max_directions, merge_degree
     keep = np.argsort(-shares, kind="stable")
     keep = keep[shares[keep] >= min_share][:max_directions]
     return directions[keep], shares[keep]
+
+
+GAUSS_MAP_CELLS = 4096     # an example's Gauss map is stored as at most this many weighted directions
+
+
+def gauss_map(normals, areas, max_cells=GAUSS_MAP_CELLS):
+    """An example's whole Gauss map, compressed for storage: (directions M by 3, area shares M summing
+    to 1), M <= ``max_cells``; empty when the surface has no area.
+
+    The normals are gathered into cells BIN_DEGREES wide (binned), coarser cells (twice as wide each
+    time) while there are more than ``max_cells``: a low-poly example keeps every face direction
+    exactly (a cube's six), a dense one its distribution at a few degrees.
+    """
+    normals = np.asarray(normals, np.float64)
+    areas = np.asarray(areas, np.float64)
+    used = areas > 0
+    total = areas[used].sum()
+    if not used.any() or not total > 0:
+        return np.empty((0, 3)), np.empty(0)
+    degrees = BIN_DEGREES
+    cells, cell_areas = binned(normals[used], areas[used], degrees)
+    while len(cells) > max_cells:
+        degrees *= 2.0
+        cells, cell_areas = binned(normals[used], areas[used], degrees)
+    return cells, cell_areas / total
