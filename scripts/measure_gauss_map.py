@@ -10,7 +10,7 @@ also the share of faces within 10 degrees of the axes, against the Cube preset's
 usage: measure_gauss_map.py [TARGET.obj ...] [--sigma 4] [--lam 4] [--steps 300] [--cells 400]
                             [--directions 32] [--decimate-cells 9] [--every-mesh]
 --every-mesh: instead, every mesh of ../shared/meshes stylized towards the decimated bunny's Gauss map
-(until converged, at most 1000 steps): whether the result is finite, how far it grew (its largest
+(until converged, at most 300 steps): whether the result is finite, how far it grew (its largest
 distance from the input's centre over the input's) and the steps it took, or the solver's refusal.
 Targets default to Spot and the 3K bunny of ../shared/meshes. The decimated bunny is the 3K bunny
 collapsed on a grid of --decimate-cells cells along its longest side (vertex clustering).
@@ -73,13 +73,13 @@ def every_mesh(args):
             print("| %s | %d | refused: %s | | |" % (name, len(F), exc), flush=True)
             continue
         solver.set_styles([style])
-        steps = solver.step_until(None, 1000)
+        steps = solver.step_until(None, 300)
         out = np.asarray(solver.vertices)
         used = np.unique(F)
         centre = V[used].mean(axis=0)
         grew = np.linalg.norm(out[used] - centre, axis=1).max() / np.linalg.norm(V[used] - centre, axis=1).max()
         print("| %s | %d | %s | %.3f | %d (%s) |" % (name, len(F), bool(np.isfinite(out).all()), grew, steps,
-                                                 "yes" if steps < 1000 else "no"), flush=True)
+                                                 "yes" if steps < 300 else "no"), flush=True)
 
 
 def main():

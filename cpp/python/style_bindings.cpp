@@ -145,7 +145,8 @@ normals: (K, 3) the example's face normals (normalized here), K >= 1; areas: (K,
 positive sum), default equal. Before each step every face looks up the 8 example normals nearest to its
 own normal (a k-d tree built here, once); its g is the sum of their bumps of sigma, each weighted by its
 pull (the example's area within 0.2 rad of it over the largest such area, square-rooted) over the sum
-of its own 8 nearest neighbours' bumps at it. A cube's six directions give exactly the Cube preset's g.)doc")
+of its own 8 nearest neighbours' bumps at it. Up to 64 normals, g sums them all with the weights of
+Eq. 10 times their pulls, as Style(normals) does: a cube's six give exactly the Cube preset's g.)doc")
       .def_property_readonly("name", [](const Style& s) { return s.name; }, "Preset name, 'custom' or 'gauss_map'.")
       .def_property_readonly("kind", [](const Style& s) {
              switch (s.g->kind()) {

@@ -84,6 +84,8 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p)
                                               : Eigen::Vector3d::UnitZ());
   if (kind_ == StyleKind::gauss_map) {
     example_ = std::make_shared<const ExampleNormals>(normals_, p.areas);
+  }
+  if (kind_ == StyleKind::gauss_map && static_cast<int>(normals_.size()) > kExactNormals) {
     // w_k = pull_k / sum of the bumps of e_k's own nearest normals at e_k (itself included).
     example_weights_.resize(normals_.size());
     int near[ExampleNormals::kMaxNearest];
@@ -104,6 +106,8 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p)
     for (int i = 0; i < K; ++i)
       for (int j = 0; j < K; ++j) A(i, j) = std::exp(sigma_ * (normals_[i].dot(normals_[j]) - 1.0));
     normal_weights_ = solve_unit_weights(A, "preferred normals");
+    if (example_)  // a small example's Gauss map: every direction, weighted by its pull
+      for (int k = 0; k < K; ++k) normal_weights_[k] *= example_->pull()[k];
     if (has_rings())
       for (double& w : normal_weights_) w *= p.axis_contribution;
     // Terms in evaluation order: antipodal pairs (n, -n) first, each pair at an even position
@@ -163,6 +167,10 @@ void PreferenceFunction::evaluate(const Eigen::Vector3d& x, const Eigen::Vector3
   }
   const double s = sigma_;
   if (kind_ == StyleKind::gauss_map) {
+    if (!terms_.empty()) {  // a small example: every direction summed, as a directions style
+      evaluate(x, g, grad, hess);
+      return;
+    }
     int near[kGaussMapTerms];
     const int count = example_->nearest(preferred, kGaussMapTerms, near);
     g = 0;
@@ -196,7 +204,7 @@ void PreferenceFunction::evaluate(const Eigen::Vector3d& x, double& g, Eigen::Ve
     hess.noalias() += (sigma_ * g / len) * (Eigen::Matrix3d::Identity() - u * u.transpose());
     return;
   }
-  if (kind_ == StyleKind::gauss_map) {
+  if (kind_ == StyleKind::gauss_map && terms_.empty()) {
     // Piecewise: the bumps of the example normals nearest to x (constant within a cell of the sphere).
     evaluate(x, x, g, grad, hess);
     return;
