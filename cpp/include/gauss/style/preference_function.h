@@ -22,9 +22,11 @@ namespace gauss {
 // suggests (GaussSolver works it out before each step: its own normal turned onto the great circle of
 // its neighbours' normals, so the surface bends about one axis at a time), and g is one bump of the
 // style's sigma around that normal.
-// gauss_map: an example's whole Gauss map (its face normals with their areas, ExampleNormals). Each face
-// prefers the example's normal nearest to its own normal at the start of the step, and g is one bump of
-// the style's sigma around it, scaled by that normal's pull (docs/styles.md#gauss-map).
+// gauss_map: an example's whole Gauss map (its face normals with their areas, ExampleNormals). Up to
+// kExactNormals of them g sums them all, with Eq. 10's weights times their pulls, as a directions style.
+// More: each face prefers the kGaussMapTerms example normals nearest to its normal at the start of the
+// step, and g sums their bumps, each weighted by its pull over the sum of its own nearest neighbours'
+// bumps there, so g is about the pull at each example normal (docs/styles.md#gauss-map).
 enum class StyleKind { directions, developable, gauss_map };
 
 struct StyleParams {
