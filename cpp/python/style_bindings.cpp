@@ -114,12 +114,63 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
            py::arg("rotation") = py::none(), py::arg("axis_contribution") = settings::axis_contribution.default_value,
            "A named style (see PRESETS) with the given sigma (None: the preset's, DEFAULTS['sigma'] for all but\n"
            "sheet_metal), mu, orientation and axis contribution.")
-      .def_property_readonly("name", [](const Style& s) { return s.name; }, "Preset name or 'custom'.")
-      .def_property_readonly("kind", [](const Style& s) { return s.g->developable() ? "developable" : "directions"; },
-                             "'directions': the style prefers its normals and rings. 'developable' (the sheet_metal\n"
-                             "preset): it has none; each face prefers its own normal turned onto the great circle of\n"
-                             "its neighbours' normals, worked out by the solver before each step, so the surface bends\n"
-                             "one way at a time; value() is then the bump around x itself (1 everywhere).")
+      .def_static("gauss_map", [](const py::object& normals, const py::object& areas, double sigma, double mu,
+                                  const py::object& rotation) {
+             StyleParams p;
+             p.kind = gauss::StyleKind::gauss_map;
+             // Refused before the copy: a huge array must not cost memory first.
+             if (as_array(normals, "normals").size() > 3 * static_cast<py::ssize_t>(settings::max_style_normals))
+               throw py::value_error("an example's Gauss map takes at most " +
+                                     std::to_string(settings::max_style_normals) +
+                                     " normals; merge near-parallel ones first (merge_directions)");
+             std::vector<double> n = read_matrix<double>(normals, 3, "normals", false);
+             for (size_t i = 0; i + 2 < n.size(); i += 3) p.normals.emplace_back(n[i], n[i + 1], n[i + 2]);
+             if (!areas.is_none()) {
+               p.areas = read_matrix<double>(areas, 1, "areas", false);
+               if (p.areas.size() != p.normals.size())
+                 throw py::value_error("areas must hold one value per normal (" + std::to_string(p.normals.size()) +
+                                       "), got " + std::to_string(p.areas.size()));
+             }
+             p.sigma = sigma;
+             p.mu = mu;
+             p.rotation = read_rotation(rotation);
+             return make_style("gauss_map", p);
+           },
+           py::arg("normals"), py::arg("areas") = py::none(), py::kw_only(),
+           py::arg("sigma") = settings::sigma.default_value, py::arg("mu") = settings::mu.default_value,
+           py::arg("rotation") = py::none(), R"doc(
+An example's whole Gauss map as a style (kind 'gauss_map', docs/styles.md#gauss-map).
+
+normals: (K, 3) the example's face normals (normalized here), K >= 1; areas: (K,) their areas (>= 0,
+positive sum), default equal. Before each step every face looks up the 8 example normals nearest to its
+own normal (a k-d tree built here, once); its g is the sum of their bumps of sigma, each weighted by its
+pull (the example's area within 0.2 rad of it over the largest such area, square-rooted) over the sum
+of its own 8 nearest neighbours' bumps at it. Up to 64 normals, g sums them all with the weights of
+Eq. 10 times their pulls, as Style(normals) does: a cube's six give exactly the Cube preset's g.)doc")
+      .def_property_readonly("name", [](const Style& s) { return s.name; }, "Preset name, 'custom' or 'gauss_map'.")
+      .def_property_readonly("kind", [](const Style& s) {
+             switch (s.g->kind()) {
+               case gauss::StyleKind::developable: return "developable";
+               case gauss::StyleKind::gauss_map: return "gauss_map";
+               default: return "directions";
+             }
+           },
+           "'directions': the style prefers its normals and rings. 'developable' (the sheet_metal\n"
+           "preset): it has none; each face prefers its own normal turned onto the great circle of\n"
+           "its neighbours' normals, worked out by the solver before each step, so the surface bends\n"
+           "one way at a time; value() is then the bump around x itself (1 everywhere). 'gauss_map'\n"
+           "(Style.gauss_map): each face prefers the example normals nearest to its own; value(x) sums the\n"
+           "weighted bumps of the 8 nearest to x.")
+      .def_property_readonly("areas", [](const Style& s) -> py::object {
+             const gauss::ExampleNormals* e = s.g->example();
+             if (e == nullptr) return py::none();
+             return py::array_t<double>(static_cast<py::ssize_t>(e->areas().size()), e->areas().data());
+           }, "A gauss_map style's areas of its normals, summing to 1; None for other styles.")
+      .def_property_readonly("pull", [](const Style& s) -> py::object {
+             const gauss::ExampleNormals* e = s.g->example();
+             if (e == nullptr) return py::none();
+             return py::array_t<double>(static_cast<py::ssize_t>(e->pull().size()), e->pull().data());
+           }, "A gauss_map style's pull of each normal, in (0, 1]; None for other styles.")
       .def_property_readonly("normals", [](const Style& s) { return to_array(s.g->normals()); },
                              "(K, 3) preferred normals after rotation.")
       .def_property_readonly("axis", [](const Style& s) { return to_array({s.g->axis()}).reshape({3}); },

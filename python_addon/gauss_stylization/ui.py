@@ -113,6 +113,7 @@ class VIEW3D_PT_gauss_styles(GaussSubPanel, bpy.types.Panel):
         buttons.operator("object.gauss_style_move", icon='TRIA_DOWN', text="").direction = 'DOWN'
         tools = layout.column(align=True)
         tools.operator("object.gauss_style_from_object", icon='OBJECT_DATA')
+        tools.operator("object.gauss_style_from_gauss_map", icon='SPHERE')
         tools.operator("object.gauss_style_auto_orient", icon='ORIENTATION_GIMBAL')
         draw_rows(split_column(layout), obj, settings, schema.OBJECT, Panel.SPHERE)
         if settings.show_style_reach:

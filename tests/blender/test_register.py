@@ -25,7 +25,7 @@ def test_unregister_removes_everything_and_register_again(addon):
 def test_every_solver_preset_is_offered(addon):
     gauss_core = addon.native.core()
     items = addon.settings.properties.GaussStyleSlot.bl_rna.properties["preset"].enum_items.keys()
-    assert set(items) == {name.upper() for name in gauss_core.PRESETS} | {"CUSTOM"}
+    assert set(items) == {name.upper() for name in gauss_core.PRESETS} | {"CUSTOM", "GAUSS_MAP"}
 
 
 def test_default_settings(addon):

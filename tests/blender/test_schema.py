@@ -96,6 +96,8 @@ LIVE_CHANGES = {
     ("slot", "axis_contribution"): (dict(preset='CYLINDER'), {}, 0.9),
     ("slot", "vertex_group"): ({}, dict(uncovered='UNSTYLED'), "Top"),
     ("slot", "custom_normals"): (dict(preset='CUSTOM', custom_normals=[(0, 0, 1)]), {}, [(1, 0, 0)]),
+    ("slot", "gauss_map"): (dict(preset='GAUSS_MAP', gauss_map=[(0, 0, 1, 0.5), (1, 0, 0, 0.5)]), {},
+                            [(0, 1, 0, 1.0)]),
     ("object", "uncovered"): (dict(vertex_group="Top"), {}, 'FIRST_SLOT'),
     ("object", "pin_group"): ({}, {}, "Pins"),
     ("object", "lam"): ({}, {}, 8.0),
@@ -246,7 +248,8 @@ def _run_without_module(tmp_path, keep_facts):
 def test_without_the_native_module_the_addon_registers_from_the_build_facts(addon, tmp_path):
     gauss_core = addon.native.core()
     out = _run_without_module(tmp_path, keep_facts=True)
-    expected = [(name.upper(), number) for number, name in enumerate(gauss_core.PRESETS)] + [("CUSTOM", 99)]
+    expected = [(name.upper(), number) for number, name in enumerate(gauss_core.PRESETS)] + [("CUSTOM", 99),
+                                                                                             ("GAUSS_MAP", 98)]
     assert "PRESETS %s" % expected in out, out
     sigma = next(line.split()[1:] for line in out.splitlines() if line.startswith("SIGMA "))
     assert [float(x) for x in sigma] == pytest.approx([gauss_core.DEFAULTS["sigma"], *gauss_core.LIMITS["sigma"]],

@@ -228,7 +228,7 @@ void GaussSolver::face_pass() {
 
 Vector3d GaussSolver::normal_update(int f, int s, const Vector3d& n, const Vector3d* es, const double* lw,
                                     const double* u) const {
-  const Vector3d* preferred = any_developable_ ? &preferred_normal_[f] : nullptr;
+  const Vector3d* preferred = any_anchored_ ? &preferred_normal_[f] : nullptr;
   if (s >= 0) return newton_normal(styles_[s], n, es, lw, u, preferred);
   const int b = -2 - s;
   return newton_normal(styles_.data(), &blend_shares_[blend_start_[b]], blend_start_[b + 1] - blend_start_[b], n, es,
@@ -236,7 +236,18 @@ Vector3d GaussSolver::normal_update(int f, int s, const Vector3d& n, const Vecto
 }
 
 void GaussSolver::update_preferred_normals() const {
-  if (any_developable_) developable_normals(topo_, X_, vertex_moment_, vertex_ruling_, preferred_normal_);
+  if (any_developable_) {
+    developable_normals(topo_, X_, vertex_moment_, vertex_ruling_, preferred_normal_);
+  } else if (any_anchored_) {
+    // A gauss_map style's target is fixed for the step: the example normal nearest to the face's normal
+    // now (as Liu & Jacobson's analogies fix theirs in the local step). A degenerate face keeps +Z.
+    parallel::for_each(static_cast<int>(topo_.faces.size()), parallel::kMinParallelItems, [&](int f) {
+      const auto& t = topo_.faces[f];
+      const Vector3d c = (X_[t[1]] - X_[t[0]]).cross(X_[t[2]] - X_[t[0]]);
+      const double len = c.norm();
+      preferred_normal_[f] = (len > 0 && std::isfinite(len)) ? Vector3d(c / len) : Vector3d::UnitZ();
+    });
+  }
 }
 
 void GaussSolver::fit_rotations() {

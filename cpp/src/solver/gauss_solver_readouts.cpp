@@ -82,7 +82,7 @@ double GaussSolver::arap_energy() const {
 }
 
 double GaussSolver::g_energy() const {
-  update_preferred_normals();  // a developable style's g is centred on the current mesh's preferred normals
+  update_preferred_normals();  // a developable or gauss_map style's g is centred on the current mesh's preferred normals
   double total = 0;
   for (size_t f = 0; f < topo_.faces.size(); ++f) {
     const int s = face_style_[f];
@@ -92,7 +92,7 @@ double GaussSolver::g_energy() const {
     const double len = c.norm();
     if (!(len > 0) || !std::isfinite(len)) continue;
     const Vector3d n = c / len;
-    const Vector3d& p = any_developable_ ? preferred_normal_[f] : n;
+    const Vector3d& p = any_anchored_ ? preferred_normal_[f] : n;
     const auto value = [&](const PreferenceFunction& g) {
       double v;
       Vector3d grad;

@@ -139,7 +139,8 @@ int GaussSolver::highest_face_style() const {
 
 void GaussSolver::styles_changed() {
   any_developable_ = std::any_of(styles_.begin(), styles_.end(), [](const PreferenceFunction& g) { return g.developable(); });
-  preferred_normal_.resize(any_developable_ ? topo_.faces.size() : 0);
+  any_anchored_ = std::any_of(styles_.begin(), styles_.end(), [](const PreferenceFunction& g) { return g.anchored(); });
+  preferred_normal_.resize(any_anchored_ ? topo_.faces.size() : 0);
   vertex_moment_.resize(any_developable_ ? topo_.num_vertices : 0);
   vertex_ruling_.resize(any_developable_ ? topo_.num_vertices : 0);
   const int blends = static_cast<int>(blend_start_.size()) - 1;

@@ -45,6 +45,12 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p)
     axis_ = p.rotation * Eigen::Vector3d::UnitZ();
     return;
   }
+  if (kind_ == StyleKind::gauss_map) {
+    if (!p.ring_offsets.empty()) throw std::invalid_argument("an example's Gauss map style takes no rings");
+    if (p.normals.empty()) throw std::invalid_argument("an example's Gauss map style needs at least one normal");
+  } else if (!p.areas.empty()) {
+    throw std::invalid_argument("only an example's Gauss map style takes areas");
+  }
   if (p.normals.empty() && p.ring_offsets.empty())
     throw std::invalid_argument("a style needs at least one preferred normal or one ring");
   if (p.normals.size() > static_cast<size_t>(settings::max_style_normals)) {
@@ -76,6 +82,21 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p)
   }
   axis_ = p.rotation * (p.axis.norm() > 1e-12 ? Eigen::Vector3d(p.axis.normalized())
                                               : Eigen::Vector3d::UnitZ());
+  if (kind_ == StyleKind::gauss_map) {
+    example_ = std::make_shared<const ExampleNormals>(normals_, p.areas);
+  }
+  if (kind_ == StyleKind::gauss_map && static_cast<int>(normals_.size()) > kExactNormals) {
+    // w_k = pull_k / sum of the bumps of e_k's own nearest normals at e_k (itself included).
+    example_weights_.resize(normals_.size());
+    int near[ExampleNormals::kMaxNearest];
+    for (size_t k = 0; k < normals_.size(); ++k) {
+      const int count = example_->nearest(normals_[k], kGaussMapTerms, near);
+      double sum = 0;
+      for (int i = 0; i < count; ++i) sum += std::exp(sigma_ * (normals_[k].dot(normals_[near[i]]) - 1.0));
+      example_weights_[k] = example_->pull()[k] / sum;
+    }
+    return;
+  }
 
   const int K = static_cast<int>(normals_.size());
   if (K > kExactNormals) {
@@ -85,6 +106,8 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p)
     for (int i = 0; i < K; ++i)
       for (int j = 0; j < K; ++j) A(i, j) = std::exp(sigma_ * (normals_[i].dot(normals_[j]) - 1.0));
     normal_weights_ = solve_unit_weights(A, "preferred normals");
+    if (example_)  // a small example's Gauss map: every direction, weighted by its pull
+      for (int k = 0; k < K; ++k) normal_weights_[k] *= example_->pull()[k];
     if (has_rings())
       for (double& w : normal_weights_) w *= p.axis_contribution;
     // Terms in evaluation order: antipodal pairs (n, -n) first, each pair at an even position
@@ -138,11 +161,30 @@ double PreferenceFunction::value(const Eigen::Vector3d& x) const {
 
 void PreferenceFunction::evaluate(const Eigen::Vector3d& x, const Eigen::Vector3d& preferred, double& g,
                                   Eigen::Vector3d& grad, Eigen::Matrix3d& hess) const {
-  if (kind_ != StyleKind::developable) {
+  if (kind_ == StyleKind::directions) {
     evaluate(x, g, grad, hess);
     return;
   }
   const double s = sigma_;
+  if (kind_ == StyleKind::gauss_map) {
+    if (!terms_.empty()) {  // a small example: every direction summed, as a directions style
+      evaluate(x, g, grad, hess);
+      return;
+    }
+    int near[kGaussMapTerms];
+    const int count = example_->nearest(preferred, kGaussMapTerms, near);
+    g = 0;
+    grad.setZero();
+    hess.setZero();
+    for (int i = 0; i < count; ++i) {
+      const Eigen::Vector3d& e = normals_[near[i]];
+      const double c = example_weights_[near[i]] * std::exp(s * (x.dot(e) - 1.0));
+      g += c;
+      grad.noalias() += (s * c) * e;
+      hess.noalias() += (s * s * c) * (e * e.transpose());
+    }
+    return;
+  }
   g = std::exp(s * (x.dot(preferred) - 1.0));
   grad = (s * g) * preferred;
   hess = (s * s * g) * (preferred * preferred.transpose());
@@ -160,6 +202,11 @@ void PreferenceFunction::evaluate(const Eigen::Vector3d& x, double& g, Eigen::Ve
     const Eigen::Vector3d u = x / len;
     evaluate(x, u, g, grad, hess);
     hess.noalias() += (sigma_ * g / len) * (Eigen::Matrix3d::Identity() - u * u.transpose());
+    return;
+  }
+  if (kind_ == StyleKind::gauss_map && terms_.empty()) {
+    // Piecewise: the bumps of the example normals nearest to x (constant within a cell of the sphere).
+    evaluate(x, x, g, grad, hess);
     return;
   }
   const double s = sigma_;

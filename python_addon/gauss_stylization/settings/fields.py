@@ -311,6 +311,34 @@ class Normals(Field):
                 raise SettingsError("%s: custom normal %d %s" % (where.owner_name, number, problem))
 
 
+class GaussMap(Field):
+    """An example's Gauss map: a collection of ``item_class`` (vector, share), read and written as
+    rows [x, y, z, share] through the slot's gauss_map_array / set_gauss_map. Its row says how many
+    directions it holds; the operator From Gauss Map sets it."""
+    widget = "gauss_map"
+
+    def __init__(self, name, label, item_class, **options):
+        super().__init__(name, label, **options)
+        self.item_class = item_class
+
+    def prop(self, classes):
+        return CollectionProperty(type=classes[self.item_class], name=self.label)
+
+    def read(self, owner):
+        return owner.gauss_map_array().tolist()
+
+    def write(self, owner, value):
+        owner.set_gauss_map(value)
+
+    def check(self, owner, where):
+        rows = owner.gauss_map_array()
+        if not len(rows):
+            raise SettingsError(where.owner_name + " is set to Gauss Map but has no example; use From Gauss Map")
+        if not (math.isfinite(float(rows.sum())) and (rows[:, 3] >= 0).all() and rows[:, 3].sum() > 0):
+            raise SettingsError(where.owner_name + ": its Gauss map has a bad direction or share; take it again "
+                                "with From Gauss Map")
+
+
 class Index(Field):
     """The active row of a UI list."""
 

@@ -15,7 +15,8 @@ solver call for slot fields (styles.make_style); see python_addon/README.md.
 
 from .. import native
 from .fields import (
-    Bool, Choice, Direction, Euler, FilePath, Float, Index, Int, Live, Normals, Panel, Slots, Text, VertexGroup,
+    Bool, Choice, Direction, Euler, FilePath, Float, GaussMap, Index, Int, Live, Normals, Panel, Slots, Text,
+    VertexGroup,
 )
 
 FACTS = native.facts()
@@ -29,6 +30,8 @@ NEW_OBJECT_SUFFIX = "_stylized"  # New Object output: '<name>_stylized'
 # Style Reach's colour scale ends here: a face this many degrees or more from its preferred normal is red.
 REACH_SCALE_DEGREES = 30.0
 CUSTOM_NUMBER = 99  # enum number of Custom in saved files; presets are numbered 0, 1, ... in PRESETS order
+GAUSS_MAP = 'GAUSS_MAP'
+GAUSS_MAP_NUMBER = 98  # enum number of Gauss Map (an example's whole normal distribution) in saved files
 
 
 def preset_identifier(name):
@@ -70,7 +73,9 @@ def _preset_items():
         return "Prefer the face normals of a %s" % preset_label(name).lower()
     items = [(preset_identifier(name), preset_label(name), tip(name), number)
              for number, name in enumerate(FACTS.presets)]
-    return items + [(CUSTOM, "Custom", "Prefer the normals listed below", CUSTOM_NUMBER)]
+    return items + [(CUSTOM, "Custom", "Prefer the normals listed below", CUSTOM_NUMBER),
+                    (GAUSS_MAP, "Gauss Map", "Prefer an example object's whole normal distribution: each face turns "
+                     "towards the example's nearest face direction (set by From Gauss Map)", GAUSS_MAP_NUMBER)]
 
 
 DEFAULT_PRESET = preset_identifier(FACTS.defaults["preset"])
@@ -103,7 +108,11 @@ def _is_custom(slot):
 
 
 def _not_custom(slot):
-    return slot.preset != CUSTOM
+    return slot.preset not in (CUSTOM, GAUSS_MAP)
+
+
+def _is_gauss_map(slot):
+    return slot.preset == GAUSS_MAP
 
 
 MAX_FRAME = 1048574  # Blender's MAXFRAME: frames range over +-this
@@ -120,13 +129,20 @@ def _own_bake_range(settings):
 def _has_rings(slot):
     """Does the slot's preset have rings (Cylinder, Cone, ...: whatever the solver says)?"""
     rings = native.ring_presets()
-    return slot.preset != CUSTOM and (rings is None or slot.preset.lower() in rings)
+    return slot.preset not in (CUSTOM, GAUSS_MAP) and (rings is None or slot.preset.lower() in rings)
 
 
 # GaussNormal: one preferred normal of a Custom style.
 NORMAL = (
     Direction("vector", "Normal", "Preferred face normal (object space, need not be unit length)",
               default=(0.0, 0.0, 1.0)),
+)
+
+# GaussMapCell: one direction of an example's Gauss map and its share of the example's area.
+GAUSS_MAP_CELL = (
+    Direction("vector", "Direction", "A face direction of the example (object space, unit length)",
+              default=(0.0, 0.0, 1.0)),
+    Float("share", "Share", "The example's share of area facing this direction", default=0.0, hard=(0.0, 1.0)),
 )
 
 def style_label(identifier):
@@ -171,6 +187,8 @@ SLOT = (
     Normals("custom_normals", "Custom Normals", "GaussNormal", live=Live.STYLES, panel=Panel.SLOT,
             relevant=_is_custom),
     Index("active_normal_index", "Active Normal"),
+    # After custom_normals: a slot written from a dict gets its example before it is checked.
+    GaussMap("gauss_map", "Gauss Map", "GaussMapCell", live=Live.STYLES, panel=Panel.SLOT, relevant=_is_gauss_map),
 )
 
 # GaussSettings: Object.gauss_stylization.

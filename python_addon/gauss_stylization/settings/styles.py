@@ -5,7 +5,7 @@ import numpy as np
 from ..errors import SettingsError
 from . import paint_curve, schema
 from .fields import Live, Where, check_all
-from .schema import CUSTOM, PIN_THRESHOLD, REGION_THRESHOLD
+from .schema import CUSTOM, GAUSS_MAP, PIN_THRESHOLD, REGION_THRESHOLD
 
 # What a slot's style (its g) depends on: the fields whose change rebuilds styles.
 STYLE_FIELDS = tuple(f for f in schema.SLOT if f.live is Live.STYLES)
@@ -35,6 +35,9 @@ def make_style(gauss_core, slot, rotation=None, sigma=None):
         # The style turns its normals, as a preset's; the cubic method turns its cube by the same rotation.
         normals = np.array(slot.custom_normal_list(), dtype=np.float64).reshape(-1, 3)
         return gauss_core.Style(normals=normals, rotation=rotation, sigma=sigma, mu=slot.mu)
+    if slot.preset == GAUSS_MAP:
+        rows = slot.gauss_map_array()
+        return gauss_core.Style.gauss_map(rows[:, :3], rows[:, 3], rotation=rotation, sigma=sigma, mu=slot.mu)
     return gauss_core.Style.preset(slot.preset.lower(), sigma=sigma, mu=slot.mu,
                                    rotation=rotation, axis_contribution=slot.axis_contribution)
 

@@ -119,3 +119,28 @@ def vertex_spread_degrees(num_vertices, triangles, normals, areas):
     smallest = np.zeros(num_vertices)
     smallest[used] = np.linalg.eigvalsh(moment[used] / total[used][:, None, None])[:, 0]
     return np.degrees(np.arcsin(np.sqrt(np.clip(smallest, 0.0, 1.0))))
+
+
+GAUSS_MAP_CELLS = 4096     # an example's Gauss map is stored as at most this many weighted directions
+
+
+def gauss_map(normals, areas, max_cells=GAUSS_MAP_CELLS):
+    """An example's whole Gauss map, compressed for storage: (directions M by 3, area shares M summing
+    to 1), M <= ``max_cells``; empty when the surface has no area.
+
+    The normals are gathered into cells BIN_DEGREES wide (binned), coarser cells (twice as wide each
+    time) while there are more than ``max_cells``: a low-poly example keeps every face direction
+    exactly (a cube's six), a dense one its distribution at a few degrees.
+    """
+    normals = np.asarray(normals, np.float64)
+    areas = np.asarray(areas, np.float64)
+    used = areas > 0
+    total = areas[used].sum()
+    if not used.any() or not total > 0:
+        return np.empty((0, 3)), np.empty(0)
+    degrees = BIN_DEGREES
+    cells, cell_areas = binned(normals[used], areas[used], degrees)
+    while len(cells) > max_cells:
+        degrees *= 2.0
+        cells, cell_areas = binned(normals[used], areas[used], degrees)
+    return cells, cell_areas / total

@@ -104,6 +104,60 @@ class OBJECT_OT_gauss_style_from_object(bpy.types.Operator):
         return {'FINISHED'}
 
 
+def example_gauss_map(source, target, depsgraph):
+    """The whole Gauss map of ``source`` (as displayed) in ``target``'s object space: (directions M by 3,
+    area shares M), turned as example_directions turns them (directions.gauss_map)."""
+    normals, areas = surface.evaluated_face_normals(source, depsgraph)
+    found, shares = directions.gauss_map(normals, areas)
+    into_target = surface.world_rotation(target).T @ surface.world_rotation(source)
+    return found @ into_target.T, shares
+
+
+class OBJECT_OT_gauss_style_from_gauss_map(bpy.types.Operator):
+    """Add a Gauss Map style: the whole normal distribution of another mesh object (e.g. a low-poly
+    example); each face turns towards the example's nearest face direction"""
+    bl_idname = "object.gauss_style_from_gauss_map"
+    bl_label = "From Gauss Map"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    source: StringProperty(name="Example", description="Mesh object whose normal distribution becomes the style")
+
+    @classmethod
+    def poll(cls, context):
+        return poll_result(cls, _mesh_problem(context))
+
+    def invoke(self, context, event):
+        if not self.source:
+            others = [o for o in context.selected_objects if o.type == 'MESH' and o != context.active_object]
+            self.source = others[0].name if others else ""
+        return context.window_manager.invoke_props_dialog(self)
+
+    def draw(self, context):
+        self.layout.prop_search(self, "source", context.scene, "objects", icon='OBJECT_DATA')
+
+    def execute(self, context):
+        obj = context.active_object
+        source = bpy.data.objects.get(self.source)
+        if source is None or source.type != 'MESH':
+            self.report({'ERROR'}, "Choose a mesh object as the example (%s)"
+                        % ("'%s' is not a mesh" % self.source if source else
+                           "there is no object '%s'" % self.source if self.source else "none chosen"))
+            return {'CANCELLED'}
+        if _core(self) is None:
+            return {'CANCELLED'}
+        found, shares = example_gauss_map(source, obj, context.evaluated_depsgraph_get())
+        if not len(found):
+            self.report({'ERROR'}, "'%s' has no faces with area to take a Gauss map from" % source.name)
+            return {'CANCELLED'}
+        settings = obj.gauss_stylization
+        settings_io.add_slot(settings, {"name": "Gauss Map of %s" % source.name, "preset": schema.GAUSS_MAP,
+                                        "gauss_map": np.column_stack([found, shares]).tolist()})
+        settings.active_style_index = len(settings.styles) - 1
+        self.report({'INFO'}, "Added a Gauss Map style from '%s' (%d directions)" % (source.name, len(found)))
+        redraw_sidebars(context)
+        return {'FINISHED'}
+
+
 class OBJECT_OT_gauss_style_auto_orient(bpy.types.Operator):
     """Set the active style's rotation to the one under which the mesh, as it is, already
     fits the style best (the smallest such rotation when several fit equally well)"""
@@ -140,4 +194,5 @@ class OBJECT_OT_gauss_style_auto_orient(bpy.types.Operator):
         return {'FINISHED'}
 
 
-classes = (OBJECT_OT_gauss_style_from_object, OBJECT_OT_gauss_style_auto_orient)
+classes = (OBJECT_OT_gauss_style_from_object, OBJECT_OT_gauss_style_from_gauss_map,
+           OBJECT_OT_gauss_style_auto_orient)

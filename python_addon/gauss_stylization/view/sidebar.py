@@ -78,8 +78,16 @@ def _draw_custom_normals(layout, _obj, slot, field):
         wrapped_label(layout, "Add at least one normal", 'ERROR')
 
 
+def _draw_gauss_map(layout, _obj, slot, _field):
+    count = len(slot.gauss_map)
+    if count:
+        layout.label(text="Example: %d directions" % count, icon='SPHERE')
+    else:
+        wrapped_label(layout, "No example yet: use From Gauss Map", 'ERROR')
+
+
 _WIDGETS = {"prop": _draw_prop, "checkbox": _draw_checkbox, "vertex_group": _draw_vertex_group,
-            "normals": _draw_custom_normals}
+            "normals": _draw_custom_normals, "gauss_map": _draw_gauss_map}
 
 
 # What a label row loses to the panel's margins, a box, its icon and the sidebar's tab strip, in

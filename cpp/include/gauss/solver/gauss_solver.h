@@ -244,7 +244,8 @@ class GaussSolver {
   // The Gauss method's normal update (newton_normal) for face f of style code s (face_style_).
   Eigen::Vector3d normal_update(int f, int s, const Eigen::Vector3d& n, const Eigen::Vector3d* es, const double* lw,
                                 const double* u) const;
-  // While a developable style is set: preferred_normal_ from the current vertices (developable_normals.h).
+  // While a developable or gauss_map style is set: preferred_normal_ from the current vertices (with a
+  // developable style: developable_normals.h, for every face; else each face's own normal).
   void update_preferred_normals() const;
   // The targets (caller's frame) of the given pins (#P, caller's numbering) from #P by 3 positions
   // (nullptr: the rest positions); throws unless the pins are distinct vertices and every target is
@@ -297,10 +298,12 @@ class GaussSolver {
   std::vector<StyleShare> blend_shares_;        // as blend_terms_: the normal update's shares
   std::vector<double> vertex_weight_;           // #V by vertex_weight_styles_ (solver numbering) or empty
   int vertex_weight_styles_ = 0;
-  // While a style is developable (sheet metal), sized by styles_changed(): each face's preferred normal,
-  // updated before each Gauss step (and by g_energy()), and the per-vertex scratch it is made with.
-  // Empty otherwise. Mutable: g_energy() reads the current mesh's.
+  // While a style is developable (sheet metal) or a gauss_map (anchored), sized by styles_changed(): each
+  // face's preferred normal, updated before each Gauss step (and by g_energy()), and the per-vertex
+  // scratch a developable style makes it with. Empty otherwise. Mutable: g_energy() reads the current
+  // mesh's. A gauss_map style looks up the example normal nearest to it.
   bool any_developable_ = false;
+  bool any_anchored_ = false;
   mutable std::vector<Eigen::Vector3d> preferred_normal_;   // #F
   mutable std::vector<Eigen::Matrix3d> vertex_moment_;      // #V
   mutable std::vector<Eigen::Vector3d> vertex_ruling_;      // #V

@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "gauss/style/example_normals.h"
 #include "gauss/style/normal_field.h"
 #include "gauss/settings.h"
 
@@ -21,12 +22,19 @@ namespace gauss {
 // suggests (GaussSolver works it out before each step: its own normal turned onto the great circle of
 // its neighbours' normals, so the surface bends about one axis at a time), and g is one bump of the
 // style's sigma around that normal.
-enum class StyleKind { directions, developable };
+// gauss_map: an example's whole Gauss map (its face normals with their areas, ExampleNormals). Up to
+// kExactNormals of them g sums them all, with Eq. 10's weights times their pulls, as a directions style.
+// More: each face prefers the kGaussMapTerms example normals nearest to its normal at the start of the
+// step, and g sums their bumps, each weighted by its pull over the sum of its own nearest neighbours'
+// bumps there, so g is about the pull at each example normal (docs/styles.md#gauss-map).
+enum class StyleKind { directions, developable, gauss_map };
 
 struct StyleParams {
   // Preferred unit normals before rotation (#K by 3); may be empty if rings are given; empty for a
-  // developable style.
+  // developable style; the example's face normals for a gauss_map style.
   std::vector<Eigen::Vector3d> normals;
+  // gauss_map only: the example's area at each normal (#K, >= 0), or empty for equal areas.
+  std::vector<double> areas;
   // Circle terms: normals x with x.axis == d for each d in ring_offsets (|d| < 1).
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   std::vector<double> ring_offsets;
@@ -51,6 +59,8 @@ class PreferenceFunction {
   explicit PreferenceFunction(const StyleParams& params);
 
   static constexpr int kExactNormals = 64;
+  // Example normals a gauss_map style sums around a face's normal: a cube's six and their neighbours.
+  static constexpr int kGaussMapTerms = 8;
 
   double value(const Eigen::Vector3d& x) const;
   // Value, gradient (Eq. 11, 14) and Hessian (Eq. 12, 15) of g at x in one pass. A developable style
@@ -59,12 +69,18 @@ class PreferenceFunction {
   void evaluate(const Eigen::Vector3d& x, double& g, Eigen::Vector3d& grad,
                 Eigen::Matrix3d& hess) const;
   // The same for a face whose neighbourhood prefers the unit normal `preferred`: a developable style's
-  // bump exp(sigma (x.p - 1)) around p; any other style ignores `preferred`.
+  // bump exp(sigma (x.p - 1)) around p; a gauss_map style's bumps w_k exp(sigma (x.e_k - 1)) around the
+  // kGaussMapTerms example normals e_k nearest to p; a directions style ignores `preferred`. A
+  // gauss_map style without `preferred` (the one-argument evaluate) takes those nearest to x.
   void evaluate(const Eigen::Vector3d& x, const Eigen::Vector3d& preferred, double& g, Eigen::Vector3d& grad,
                 Eigen::Matrix3d& hess) const;
 
   StyleKind kind() const { return kind_; }
   bool developable() const { return kind_ == StyleKind::developable; }
+  // Does g depend on a normal given per face (evaluate with `preferred`)?
+  bool anchored() const { return kind_ != StyleKind::directions; }
+  // The example of a gauss_map style (normals rotated), or nullptr.
+  const ExampleNormals* example() const { return example_.get(); }
 
   double sigma() const { return sigma_; }
   double mu() const { return mu_; }
@@ -84,6 +100,8 @@ class PreferenceFunction {
   std::vector<char> second_of_pair_;  // per term: the antipode of the term before it
   double exp_minus_2sigma_ = 0;
   std::shared_ptr<const NormalField> field_;  // shared: styles are copied into every solver
+  std::shared_ptr<const ExampleNormals> example_;
+  std::vector<double> example_weights_;  // gauss_map: w_k of each example normal
   Eigen::Vector3d axis_;
   std::vector<double> offsets_;
   std::vector<double> ring_weights_;    // w'_r
