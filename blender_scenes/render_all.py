@@ -23,6 +23,7 @@ import scene_cube_stays_cube  # noqa: E402
 import scene_cubic_vs_gauss  # noqa: E402
 import scene_extreme  # noqa: E402
 import scene_from_example  # noqa: E402
+import scene_gauss_map  # noqa: E402
 import scene_gauss_sphere  # noqa: E402
 import scene_handles  # noqa: E402
 import scene_keep_volume  # noqa: E402
@@ -32,14 +33,15 @@ import scene_paint_strength  # noqa: E402
 import scene_pins  # noqa: E402
 import scene_self_intersections  # noqa: E402
 import scene_sheet_metal  # noqa: E402
-import scene_style_reach  # noqa: E402
 import scene_sigma  # noqa: E402
+import scene_square_flat_regions  # noqa: E402
+import scene_style_reach  # noqa: E402
 import scene_styles  # noqa: E402
 
 SCENES = (default_scene, scene_cube_stays_cube, scene_styles, scene_sigma, scene_pins,
           scene_multistyle, scene_extreme, scene_cubic_vs_gauss, scene_bake, scene_keep_volume, scene_handles,
           scene_from_example, scene_gauss_sphere, scene_paint_strength, scene_self_intersections,
-          scene_sheet_metal, scene_style_reach)
+          scene_sheet_metal, scene_style_reach, scene_square_flat_regions, scene_gauss_map)
 
 
 def main():

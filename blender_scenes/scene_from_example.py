@@ -18,10 +18,11 @@ EXAMPLE_FACES = 60       # the Decimate modifier's target
 EXAMPLE_COLOR = (0.40, 0.62, 0.45, 1.0)
 
 
-def low_poly_example():
+def low_poly_example(faces=EXAMPLE_FACES):
+    """The bunny with a Decimate modifier down to about ``faces`` faces."""
     example, _ = scene_kit.demo_mesh(scene_kit.BUNNY, "Example")
     decimate = example.modifiers.new("Decimate", 'DECIMATE')
-    decimate.ratio = min(1.0, EXAMPLE_FACES / len(example.data.polygons))
+    decimate.ratio = min(1.0, faces / len(example.data.polygons))
     render_kit.color(example, EXAMPLE_COLOR)
     return example
 

@@ -18,7 +18,7 @@ import scene_kit  # noqa: E402
 from measures import squareness  # noqa: E402
 
 NAME = "square_flat_regions"
-FINISH = dict(camera_direction=(0.35, -0.75, 1.0))
+FINISH = dict(camera_direction=(0.25, -1.0, 1.1))
 
 
 def _object(name, make):
@@ -43,8 +43,8 @@ def build():
             value = squareness(scene_kit.coords(obj), tris)
             print("  %-14s squareness %.3f" % (obj.name, value))
             objects.append(obj)
-            labels.append("%s, Square Flat Regions %s\nsquareness %.2f" % (shape, "on" if on else "off", value))
-    render_kit.show_grid(objects, labels, columns=2, spacing_x=3.0, spacing_z=3.2)
+            labels.append("%s, %s\nsquareness %.2f" % (shape, "on" if on else "off", value))
+    render_kit.show_grid(objects, labels, columns=4, spacing_x=3.0)
 
 
 if __name__ == "__main__":

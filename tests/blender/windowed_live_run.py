@@ -474,6 +474,65 @@ def style_reach_overlay(name):
     push_undo("Style Reach scenario undone")
 
 
+def from_gauss_map_button(name):
+    """From Gauss Map as an artist uses it: an icosahedron beside Spot selected, Spot active, a click on
+    the Styles panel's button and Enter in its dialog add a Gauss Map slot of the icosahedron's 20 face
+    directions; a live run then turns Spot's faces towards them (the share within 10 degrees of them
+    grows) and Esc restores Spot bit-exactly."""
+    import bmesh
+    from windowed_actions import find_sidebar_button, found
+    from measures import aligned_share
+    obj = bpy.data.objects[name]
+    bm = bmesh.new()
+    bmesh.ops.create_icosphere(bm, subdivisions=1, radius=0.5)
+    example = helpers.object_from_bmesh(bm, "Icosahedron")
+    bm.free()
+    example.location = (obj.dimensions.x * 1.5, 0.0, 0.0)
+    activate(example)
+    obj.select_set(True)
+    bpy.context.view_layer.objects.active = obj
+    push_undo("Icosahedron beside")
+    slots_before = len(obj.gauss_stylization.styles)
+    original = coords(obj)
+    yield from find_sidebar_button("gauss_style_from_gauss_map")
+    check("the Styles panel shows From Gauss Map", found["button"] is not None)
+    if found["button"] is None:
+        return
+    press('LEFTMOUSE', *found["button"])
+    yield 1.0
+    press('RET', *found["button"])  # the dialog's OK: the example is the other selected mesh
+    yield 1.0
+    settings = obj.gauss_stylization
+    added = len(settings.styles) == slots_before + 1 and settings.styles[-1].preset == 'GAUSS_MAP'
+    check("a click and Enter add a Gauss Map slot of the example", added,
+          "%d slots, last %s" % (len(settings.styles), settings.styles[-1].preset if settings.styles else None))
+    if not added:
+        return
+    for index in range(slots_before):  # only the new slot: the Cube slot gives way to it
+        settings.styles[index].mu = 0.0
+    directions = _icosahedron_normals(example)  # neither object is turned: the example's own directions
+    tris = helpers.triangles(obj)[0]
+    before = aligned_share(original.reshape(-1, 3), tris, directions)
+    yield from live_run(40)
+    after = aligned_share(coords(obj).reshape(-1, 3), tris, directions)
+    check("the live run turns Spot's faces towards the example's directions", after > before + 0.2,
+          "%.3f -> %.3f" % (before, after))
+    yield from kit.end_with('ESC', "Esc restores Spot bit-exactly", name, original)
+    obj = bpy.data.objects[name]
+    obj.gauss_stylization.styles.remove(len(obj.gauss_stylization.styles) - 1)
+    for index in range(slots_before):
+        obj.gauss_stylization.styles[index].mu = 1.0
+    bpy.data.objects.remove(bpy.data.objects["Icosahedron"])
+    activate(obj)
+    push_undo("From Gauss Map scenario undone")
+
+
+def _icosahedron_normals(example):
+    normals = np.empty((len(example.data.polygons), 3), np.float32)
+    example.data.polygons.foreach_get("normal", normals.reshape(-1))
+    return normals
+
+
 def find_sidebar_field_click(data_path):
     """Generator: a click on the sidebar field (a checkbox) of ``data_path``."""
     from windowed_actions import find_sidebar_field
@@ -516,7 +575,7 @@ def make_other(name):
 SCENARIOS = ("sigma_and_move_during_a_kept_run", "sigma_and_move_during_a_cancelled_run",
              "gizmo_and_header_clicks", "outliner_selection", "several_objects", "region_group_deleted",
              "converged_then_sigma_resumes", "cubic_converges_accelerated", "unstable_run_says_so", "replay_button",
-             "sheet_metal_from_the_style_menu", "style_reach_overlay")
+             "sheet_metal_from_the_style_menu", "style_reach_overlay", "from_gauss_map_button")
 
 
 def run_scenario(scenario_name, name, other):

@@ -4,7 +4,8 @@ A face of a style with directions (every preset but Sheet Metal, and Custom) is 
 style's nearest preferred normal or ring; a face of Sheet Metal, which has no fixed directions, by how
 far the normals around it spread from one great circle (the RMS angle of the normals around each of its
 corners from their best great circle, the largest of the three: 0 where the surface is developable);
-a face no slot stylizes has no angle (NaN).
+a face of a Gauss Map style (an example's whole distribution of normals) against the example's nearest
+face direction; a face no slot stylizes has no angle (NaN).
 Each triangle takes the slot with the largest weight on it, as the solver's blend is led by it. The
 Cubic method's slots prefer the axes of their rotated cube. Pure numpy; the overlay and the
 operators read the mesh and draw.
@@ -73,7 +74,7 @@ def triangle_angles(coords, triangles, slot_of_triangle, slot_styles_):
             if spread is None:
                 spread = directions.vertex_spread_degrees(len(coords), triangles, normals, areas)
             angles[mine] = spread[triangles[mine]].max(axis=1)
-        elif style.kind == "directions":
+        elif style.kind in ("directions", "gauss_map"):  # a Gauss Map's normals: the example's directions
             angles[mine] = _direction_angles(normals[mine], style)
         else:
             raise ValueError("Style Reach cannot measure a style of kind '%s'" % style.kind)
