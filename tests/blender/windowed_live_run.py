@@ -508,8 +508,8 @@ def from_gauss_map_button(name):
           "%d slots, last %s" % (len(settings.styles), settings.styles[-1].preset if settings.styles else None))
     if not added:
         return
-    for index in range(slots_before):  # only the new slot: the Cube slot gives way to it
-        settings.styles[index].mu = 0.0
+    for _ in range(slots_before):  # only the new slot (a slot without a Region acts where it is the first)
+        settings.styles.remove(0)
     directions = _icosahedron_normals(example)  # neither object is turned: the example's own directions
     tris = helpers.triangles(obj)[0]
     before = aligned_share(original.reshape(-1, 3), tris, directions)
@@ -519,9 +519,8 @@ def from_gauss_map_button(name):
           "%.3f -> %.3f" % (before, after))
     yield from kit.end_with('ESC', "Esc restores Spot bit-exactly", name, original)
     obj = bpy.data.objects[name]
-    obj.gauss_stylization.styles.remove(len(obj.gauss_stylization.styles) - 1)
-    for index in range(slots_before):
-        obj.gauss_stylization.styles[index].mu = 1.0
+    obj.gauss_stylization.styles.clear()
+    kit.addon().settings_io.add_slot(obj.gauss_stylization, {"preset": 'CUBE'})
     bpy.data.objects.remove(bpy.data.objects["Icosahedron"])
     activate(obj)
     push_undo("From Gauss Map scenario undone")
