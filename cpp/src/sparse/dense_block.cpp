@@ -11,7 +11,8 @@ namespace gauss {
 namespace {
 
 // Columns per tile: large enough for Eigen's kernels to run at speed, small enough that the
-// largest separators of a 500K-vertex mesh (~1,500 columns) split into enough tiles for two threads.
+// largest separators of a big mesh split into enough tiles for two threads (their size:
+// docs/performance.md#set-up-at-scale).
 constexpr int kTile = 128;
 
 using Strided = Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;

@@ -18,7 +18,8 @@ using Eigen::Vector3d;
 
 constexpr int kParallelMin = 1024;
 // CG stops when every node's residual 1 - ((A + ridge I) w)_i is below this: a fifth of the
-// refinement target (3e-4 cost a third more iterations and moved the errors at the normals by < 1e-4).
+// refinement target, as a tighter one costs iterations without moving the errors at the normals
+// (measured: docs/performance.md#figures-behind-the-codes-choices).
 constexpr double kSolveTolerance = 1e-3;
 constexpr int kMaxIterations = 300;
 
@@ -257,8 +258,8 @@ void NormalField::set_nodes(const std::vector<Vector3d>& nodes, const std::vecto
 }
 
 // Both loops below go through a cell's list in chunks: dot products and a branch-free compaction of
-// the candidates within reach first, then the exponentials back to back, then the sums. A library
-// call inside the first loop made the compiler spill x and the sums on every iteration.
+// the candidates within reach first, then the exponentials back to back, then the sums. No library
+// call in the first loop, so that the compiler keeps x and the sums in registers.
 namespace {
 constexpr int kChunk = 64;
 }

@@ -8,9 +8,8 @@ namespace {
 
 constexpr int kPhases = static_cast<int>(SetupPhase::count);
 
-// Share of each phase in the set-up time of the 501,128-vertex mesh of scripts/measure_scale.sh on
-// the 2-core reference machine (its "setup phases" line, medians of three runs). Only the
-// proportions matter.
+// Share of each phase in the set-up time of a big mesh, so that the fraction follows the clock; only
+// the proportions matter (measured: docs/performance.md#set-up-at-scale).
 constexpr double kPhaseWeight[kPhases] = {
     /* topology */ 0.05,
     /* weights */ 0.07,

@@ -5,10 +5,10 @@
 // Why the decision: the weights enter the Laplacian, the rotation fit, the ADMM normal step and the
 // right-hand side (lambda w e*). A triangle with an angle near 0 or 180 degrees (a sliver: a filled
 // hole's long thin fan, an n-gon with collinear sides triangulated, coordinates rounded to float)
-// has cotangents up to ~1e8 whose values are rounding noise. Its own ARAP term stays positive
+// has huge cotangents whose values are rounding noise. Its own ARAP term stays positive
 // semi-definite, but the ADMM's edge targets e* do not close around a face, and a weight of |cot|
-// turns that mismatch into forces that grow like cot^2 relative to the face's stiffness: the mesh
-// blew up within 50 steps (a subdivided cylinder's caps) or after a few hundred (a hole-filled bunny).
+// turns that mismatch into forces that grow like cot^2 relative to the face's stiffness, which blows
+// the mesh up (measured: docs/robustness.md#what-is-refused-and-what-is-accepted).
 // Such a triangle gets the same small positive weight as a zero-area one: it still ties its vertices
 // to the mesh, and the Laplacian stays definite. Well-shaped meshes (every |cot| <= kMaxCotangent,
 // i.e. every angle between ~0.29 and ~179.71 degrees) are not affected at all.

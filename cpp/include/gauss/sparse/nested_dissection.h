@@ -2,13 +2,14 @@
 // Fill-reducing ordering of a sparse symmetric matrix by nested dissection (George 1973): a small set
 // of vertices of the matrix's graph, the separator, splits it in two; both halves are ordered first
 // (recursively) and the separator last, so eliminating one half never fills into the other. On a mesh
-// Laplacian the separators are rings of vertices around the surface, and on big meshes the factor
-// comes out much sparser than with minimum degree (docs/performance.md, Set-up at scale: the measured
-// fill of both).
+// Laplacian the separators are rings of vertices around the surface, and on most big meshes the
+// factor comes out much sparser than with minimum degree, though not on every one (the fill of both:
+// docs/performance.md#set-up-at-scale).
 //
 // Separators come from graph_bisection.h (multilevel). Graphs of at most 50,000 vertices, and the
 // pieces of at most 1,000 vertices the dissection ends in, are ordered by approximate minimum degree
-// (Eigen's AMD): at those sizes it measured as sparse or sparser, and faster.
+// (Eigen's AMD), because at those sizes dissecting further saves little or no fill for much more
+// time (measured: docs/performance.md#set-up-at-scale).
 //
 // Input:  n vertices; the neighbours of v are adj[adj_start[v] .. adj_start[v+1]) (symmetric, no self
 //         loops).

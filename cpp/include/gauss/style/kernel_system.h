@@ -6,13 +6,12 @@
 // solved by conjugate gradients preconditioned with overlapping local solves (additive Schwarz).
 //
 // Why the ridge: Eq. 10 on normals closer than a kernel width is nearly singular, its weights huge
-// and alternating (Spot's 5,856 face normals at sigma 1000: |w| up to 3e3), which makes g wild between
-// the normals and the solve slow. With the ridge, g misses 1 at node i by exactly ridge * w_i
-// (measured there: ridge 1e-4 gives |w| <= ~20 and |g - 1| <= 2e-3), and the condition number is at
-// most about (row sum) / ridge.
+// and alternating, which makes g wild between the normals and the solve slow. With the ridge, g
+// misses 1 at node i by exactly ridge * w_i, and the condition number is at most about
+// (row sum) / ridge (measured: docs/performance.md#figures-behind-the-codes-choices).
 // Why Schwarz: the small eigenvalues of A belong to modes that alternate from node to node, which a
-// dense solve over a few neighbouring nodes captures; with patches of a lattice cell and its
-// neighbours CG takes ~10-40 iterations where diagonal scaling took hundreds.
+// dense solve over a few neighbouring nodes captures, so CG needs far fewer iterations than with
+// diagonal scaling (docs/performance.md#figures-behind-the-codes-choices).
 //
 // Deterministic for any thread count: rows and patches are computed independently, and every sum over
 // nodes is taken in fixed chunks, added in a fixed order.

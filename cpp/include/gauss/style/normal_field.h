@@ -11,8 +11,8 @@
 //  1. A geodesic lattice (sphere_lattice.h) of spacing <= kLatticeSpacing s; each input normal counts
 //     towards its nearest lattice node. Where a node and all its lattice neighbours hold at least
 //     kCoreCount normals, the normals cover the sphere densely, g is a plateau there, and the lattice
-//     node stands for them (a regular plateau is flat to ~5e-4 and well conditioned; one collocated on
-//     the irregular normals themselves rippled by 5e-3 with as many nodes).
+//     node stands for them (a regular plateau is flatter and better conditioned than one collocated on
+//     the irregular normals: docs/performance.md#figures-behind-the-codes-choices).
 //  2. The other normals are merged (direction_merge.h): at kSparseMerge widths in lattice cells with at
 //     most kSparseCount normals (sparse normals keep a node each: Eq. 10 nearly exactly), at
 //     kDenseMerge widths in fuller cells (the rim of a dense region, a tight bunch). Merge angles are
@@ -25,10 +25,10 @@
 // Tolerance: |g(n_k) - 1| <= max_input_error() at every input normal, measured; <= kTolerance for every
 // family the tests cover (spread, clustered, mesh face normals, degenerate sets; sigma 1e-3 to 1e3).
 // Why 1e-2 and not less: exact Eq. 10 on normals closer than a kernel width has huge, alternating
-// weights (Spot's 5,856 face normals at sigma 1000: up to 3e3), a wild g between the normals and a
-// hopeless solve; the ridge keeps them below ~20 at the price of g = 1 - kRidge w_i at node i (<= 2e-3),
-// and merging adds its share where normals crowd. The truncated terms change g by at most
-// truncation_bound(), its gradient by sigma and its Hessian by sigma^2 times that.
+// weights, which the ridge bounds at the price of g = 1 - kRidge w_i at node i, and merging adds its
+// share where normals crowd (figures: docs/performance.md#figures-behind-the-codes-choices). The
+// truncated terms change g by at most truncation_bound(), its gradient by sigma and its Hessian by
+// sigma^2 times that.
 //
 // Evaluation: a NodeGrid lists, per cell, the nodes within reach (kernel >= kTruncation); x reads its
 // own cell's list.
@@ -45,17 +45,19 @@ class SphereLattice;
 class NormalField {
  public:
   static constexpr double kTruncation = 1e-10;     // kernel values below this are skipped
-  // The weight solve drops more: 0.7 times the entries; g at a node then differs from the solved
-  // system's by at most 1e-7 sum |w_j| over the extra nodes (~1e-6 measured), which the check sees.
+  // The weight solve drops more, for a cheaper solve: g at a node then differs from the solved
+  // system's by at most 1e-7 sum |w_j| over the extra nodes, which the check sees (measured:
+  // docs/performance.md#figures-behind-the-codes-choices).
   static constexpr double kSolveTruncation = 1e-7;
   static constexpr double kTolerance = 1e-2;       // stated bound on |g(n_k) - 1| (see above)
   static constexpr double kRefineTarget = 5e-3;    // refinement stops below this: half the tolerance
   static constexpr double kRidge = 1e-4;           // see above and kernel_system.h
-  // Lattice spacing in kernel widths: 1.2 keeps the plateau's ripple ~5e-4 (1.4: 2e-3) with the
-  // fewest nodes (the step sums them all at small sigma: 42 at sigma 4).
+  // Lattice spacing in kernel widths: the widest whose plateau is still flat, as the step sums every
+  // node at small sigma (measured: docs/performance.md#figures-behind-the-codes-choices).
   static constexpr double kLatticeSpacing = 1.2;
-  // A lattice node stands for the normals near it when it and its neighbours hold at least this many
-  // (1 let single normals a cell apart make a plateau, which rippled by 3e-2 on Spot at sigma 1000).
+  // A lattice node stands for the normals near it when it and its neighbours hold at least this many,
+  // so that single normals a cell apart do not make a rippling plateau
+  // (docs/performance.md#figures-behind-the-codes-choices).
   static constexpr int kCoreCount = 2;
   static constexpr int kSparseCount = 8;           // normals in a lattice cell for it to count as sparse
   static constexpr double kSparseMerge = 0.03;     // widths: closer, the ridge merges them anyway

@@ -3,9 +3,9 @@
 // (class I geodesic grid of frequency n) and projected onto the sphere, 10 n^2 + 2 nodes.
 //
 // Why NormalField uses it: where preferred normals cover the sphere densely, g is a plateau of height
-// 1, and Gaussian bumps on nearly evenly spaced nodes reproduce a plateau with far less ripple than
-// bumps on the (irregular) data: measured at a mean spacing of 1.2 kernel widths, the collocated
-// plateau is flat to ~5e-4, its kernel matrix well conditioned, and no coarser node set is flat.
+// 1, and Gaussian bumps on nearly evenly spaced nodes reproduce a plateau with far less ripple, and a
+// better-conditioned kernel matrix, than bumps on the (irregular) data
+// (measured: docs/performance.md#figures-behind-the-codes-choices).
 // Its cells (each node's nearest points) also give the cheap local statistics NormalField needs: how
 // many normals fall near each node, and which nodes are neighbours.
 #include <Eigen/Core>

@@ -5,9 +5,8 @@
 //
 // The set-up walks through the phases of SetupPhase in order (a re-factorization only through the
 // last four). fraction() moves from 0 to 1 and never goes back; each phase owns a slice of it as
-// wide as its share of the set-up time measured on a 500K-vertex mesh (kPhaseWeight in
-// progress.cpp), and within a phase the code reports how much of its work is done, so the fraction
-// grows roughly in proportion to time.
+// wide as its share of the set-up time (kPhaseWeight in progress.cpp), and within a phase the code
+// reports how much of its work is done, so the fraction grows roughly in proportion to time.
 //
 // cancel() may be called from any thread; the set-up notices it at its next check (checks are a few
 // milliseconds of work apart) and throws Cancelled after releasing everything it allocated.

@@ -23,11 +23,10 @@ int64_t system_total_memory_bytes();
 
 // Hands the pages of freed heap memory back to the system. glibc keeps much of what a set-up's
 // temporaries freed resident: blocks freed between live ones in its heap, and the arenas of the pool
-// threads that ordered and factored the mesh (on the 501K mesh of scripts/measure_scale.sh, 115 MB
-// after the ordering alone). The factorization calls it before it allocates the factor and again at
-// its end, so that neither the factor nor the steps sit on top of that memory, and the memory check
-// sees it as available. A few milliseconds; on C libraries that return freed pages by themselves
-// (musl) it does nothing.
+// threads that ordered and factored the mesh. The factorization calls it before it allocates the
+// factor and again at its end, so that neither the factor nor the steps sit on top of that memory,
+// and the memory check sees it as available (its cost and gain: docs/performance.md#set-up-at-scale).
+// On C libraries that return freed pages by themselves (musl) it does nothing.
 void release_free_memory();
 
 }  // namespace gauss
