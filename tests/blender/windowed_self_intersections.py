@@ -127,6 +127,7 @@ def live_run_on_spot(name, _prepared):
     obj.gauss_stylization.resolution_independent = False  # the paper's strength, at which Spot crosses itself
     original = coords(obj)
     check("Spot does not cross itself before the run", crossing_pairs(obj) == 0)
+    yield from scroll_sidebar_down()  # the Solver panel is below the Styles panel's rows
     yield from type_into_field(LAMBDA_PATH, "20")
     check("Lambda 20 typed into the Solver panel", bpy.data.objects[name].gauss_stylization.lam == 20.0)
     seen = {}
