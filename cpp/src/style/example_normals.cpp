@@ -55,7 +55,8 @@ ExampleNormals::ExampleNormals(const std::vector<Vector3d>& normals, const std::
   axis_.assign(K, 0);
   build(normals_, order_, axis_, 0, K);
 
-  // Pull: the area density around each normal, relative to the densest, to kDensityPower.
+  // Pull: the square root of the area density around each normal, relative to the densest. sqrt, not
+  // pow: pow's glibc symbol is versioned 2.29, past what the module may need (cpp/python/glibc_baseline.cpp).
   const double chord = 2.0 * std::sin(0.5 * kDensityRadius);
   pull_.assign(K, 0.0);
   double densest = 0;
@@ -65,7 +66,7 @@ ExampleNormals::ExampleNormals(const std::vector<Vector3d>& normals, const std::
     pull_[k] = sum;
     densest = std::max(densest, sum);
   }
-  for (double& w : pull_) w = std::max(std::pow(w / densest, kDensityPower), 1e-6);
+  for (double& w : pull_) w = std::max(std::sqrt(w / densest), 1e-6);
 }
 
 template <class F>

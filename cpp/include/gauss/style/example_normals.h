@@ -5,7 +5,7 @@
 // a query allocates nothing and is safe from many threads at once.
 //
 // Each normal's pull is its share of the example's area density: the area of the example's normals
-// within kDensityRadius of it, over the largest such area, raised to kDensityPower. A face of the
+// within kDensityRadius of it, over the largest such area, square-rooted. A face of the
 // stylized mesh that snaps to a direction the example barely has is pulled less than one that snaps to
 // a direction it has much of (Liu & Jacobson's Normal-Driven Spherical Shape Analogies snap every face
 // alike; docs/styles.md#gauss-map says what the weighting gains).
@@ -17,7 +17,6 @@ namespace gauss {
 class ExampleNormals {
  public:
   static constexpr double kDensityRadius = 0.2;  // radians (about 11 degrees)
-  static constexpr double kDensityPower = 0.5;
 
   // normals  #K unit vectors (checked by the caller);  areas  #K values >= 0 with a positive sum, or
   //   empty for equal areas. Throws std::invalid_argument on a bad area.
