@@ -63,7 +63,28 @@ def _property_under_mouse(x, y):
 def find_sidebar_field(data_path):
     """Generator: hover down the sidebar and ask Blender which property is under the mouse;
     leaves the middle of ``data_path``'s row in found["at"] (None if not found). A place found
-    before is checked first (the panel's layout rarely changes)."""
+    before is checked first (the panel's layout rarely changes). A row below the sidebar's bottom is
+    scrolled to, as an artist scrolls: the sidebar is scrolled down a few wheel clicks at a time."""
+    yield from _find_sidebar_field_here(data_path)
+    ui = view3d()[1]['UI']
+    middle = (ui.x + ui.width // 2, ui.y + ui.height // 2)
+    # Not in view: from the top of the sidebar, then a few wheel clicks further down at a time.
+    for wheel, clicks in [('WHEELUPMOUSE', 40)] + [('WHEELDOWNMOUSE', SCROLL_CLICKS)] * SCROLL_TRIES:
+        if found["at"] is not None:
+            return
+        window().event_simulate(type='MOUSEMOVE', value='NOTHING', x=middle[0], y=middle[1])
+        for _ in range(clicks):
+            window().event_simulate(type=wheel, value='PRESS', x=middle[0], y=middle[1])
+        yield 0.4
+        found.pop(data_path, None)
+        yield from _find_sidebar_field_here(data_path)
+
+
+SCROLL_TRIES, SCROLL_CLICKS = 6, 4
+
+
+def _find_sidebar_field_here(data_path):
+    """find_sidebar_field without scrolling."""
     known = found.get(data_path)
     if known is not None:
         yield from _property_under_mouse(*known)

@@ -377,6 +377,7 @@ def sheet_metal_from_the_style_menu(name):
     from measures import developability
     obj = activate(bpy.data.objects[name])
     slot = obj.gauss_stylization.styles[0]
+    slot.sigma = addon().settings.schema.FACTS.defaults["sigma"]  # earlier scenarios typed their own Sigma
     original, lam = coords(obj), obj.gauss_stylization.lam
     push_undo("Before Sheet Metal")
     look = addon().settings.schema.LOOK_LAMBDA["sheet_metal"]
@@ -384,6 +385,7 @@ def sheet_metal_from_the_style_menu(name):
     yield from find_sidebar_field("gauss_stylization.styles[0].preset")
     check("the sidebar shows the slot's Style menu", found_at() is not None)
     if found_at() is None:
+        yield from kit.end_with('ESC', "Esc then restores the mesh bit-exactly", name, original)
         return
     for _ in range(2 * len(addon().settings.schema._preset_items())):  # Ctrl+wheel steps through the items
         if slot.preset == 'SHEET_METAL':
