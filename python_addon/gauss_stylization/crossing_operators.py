@@ -8,16 +8,7 @@ from . import native
 from .errors import NativeModuleError
 from .mesh import crossings
 from .run import runs
-from .settings.validation import poll_result
-
-
-def _problem(context):
-    obj = context.active_object
-    if obj is None or obj.type != 'MESH':
-        return "Select a mesh object first"
-    if obj.mode not in {'OBJECT', 'EDIT'}:
-        return "Only in Object Mode or Edit Mode"
-    return None
+from .settings.validation import inspect_problem, poll_result
 
 
 def said(found):
@@ -40,7 +31,7 @@ class OBJECT_OT_gauss_select_intersections(bpy.types.Operator):
 
     @classmethod
     def poll(cls, context):
-        return poll_result(cls, _problem(context))
+        return poll_result(cls, inspect_problem(context))
 
     def execute(self, context):
         obj = context.active_object
@@ -62,7 +53,7 @@ class OBJECT_OT_gauss_select_intersections(bpy.types.Operator):
 
 
 def _held_problem(context):
-    problem = _problem(context)
+    problem = inspect_problem(context)
     if problem:
         return problem
     obj = context.active_object

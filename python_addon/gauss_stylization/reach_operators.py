@@ -9,7 +9,7 @@ from bpy.props import FloatProperty
 from .errors import NativeModuleError, SettingsError
 from .mesh import crossings
 from .run import runs
-from .settings.validation import poll_result
+from .settings.validation import inspect_problem, poll_result
 from .sphere import reach_overlay, style_reach
 
 ATTRIBUTE = "gauss_style_angle"  # FACE float: degrees; UNSTYLED_VALUE where no slot stylizes the face
@@ -17,11 +17,10 @@ UNSTYLED_VALUE = -1.0
 
 
 def _problem(context):
+    problem = inspect_problem(context)
+    if problem is not None:
+        return problem
     obj = context.active_object
-    if obj is None or obj.type != 'MESH':
-        return "Select a mesh object first"
-    if obj.mode not in {'OBJECT', 'EDIT'}:
-        return "Only in Object Mode or Edit Mode"
     if runs.is_running(obj):
         return "Keep or cancel the live run first (the overlay shows it meanwhile)"
     if not obj.gauss_stylization.styles:

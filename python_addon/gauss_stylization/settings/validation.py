@@ -25,6 +25,17 @@ def object_problem(context, need_mesh=True):
     return None
 
 
+def inspect_problem(context):
+    """Why an operator that looks at the active mesh (selects faces of it, measures it) cannot run (None
+    if it can): it needs a mesh in Object Mode or Edit Mode, where a selection can be made and seen."""
+    obj = context.active_object
+    if obj is None or obj.type != 'MESH':
+        return "Select a mesh object first"
+    if obj.mode not in {'OBJECT', 'EDIT'}:
+        return "Only in Object Mode or Edit Mode"
+    return None
+
+
 def check_object(obj):
     mesh = obj.data
     if mesh.library is not None or getattr(mesh, "override_library", None) is not None:

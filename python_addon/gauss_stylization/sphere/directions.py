@@ -77,6 +77,18 @@ def binned(normals, weights, degrees):
     return mean / length[:, None], sums
 
 
+def _with_area(normals, areas):
+    """The triangles that have area: (normals, areas, total area), as float64; total is 0 (and the arrays
+    empty) when none has, or when the areas do not sum to a positive number."""
+    normals = np.asarray(normals, np.float64)
+    areas = np.asarray(areas, np.float64)
+    used = areas > 0
+    total = float(areas[used].sum())
+    if not used.any() or not total > 0:
+        return np.empty((0, 3)), np.empty(0), 0.0
+    return normals[used], areas[used], total
+
+
 def dominant_directions(gauss_core, normals, areas, max_directions, merge_degrees=MERGE_DEGREES,
                         min_share=MIN_SHARE):
     """The directions most of the surface faces: area-weighted clusters of its normals.
@@ -86,13 +98,10 @@ def dominant_directions(gauss_core, normals, areas, max_directions, merge_degree
     the total area, largest first, at most ``max_directions`` of them; shares sum to at
     most 1. Empty when the surface has no area.
     """
-    normals = np.asarray(normals, np.float64)
-    areas = np.asarray(areas, np.float64)
-    used = areas > 0
-    total = areas[used].sum()
-    if not used.any() or not total > 0:
+    normals, areas, total = _with_area(normals, areas)
+    if total == 0:
         return np.empty((0, 3)), np.empty(0)
-    cells, cell_areas = binned(normals[used], areas[used], BIN_DEGREES)
+    cells, cell_areas = binned(normals, areas, BIN_DEGREES)
     directions, weights = gauss_core.merge_directions(cells, merge_degrees, cell_areas)
     directions, shares = np.asarray(directions), np.asarray(weights) / total
     keep = np.argsort(-shares, kind="stable")
@@ -132,15 +141,12 @@ def gauss_map(normals, areas, max_cells=GAUSS_MAP_CELLS):
     time) while there are more than ``max_cells``: a low-poly example keeps every face direction
     exactly (a cube's six), a dense one its distribution at a few degrees.
     """
-    normals = np.asarray(normals, np.float64)
-    areas = np.asarray(areas, np.float64)
-    used = areas > 0
-    total = areas[used].sum()
-    if not used.any() or not total > 0:
+    normals, areas, total = _with_area(normals, areas)
+    if total == 0:
         return np.empty((0, 3)), np.empty(0)
     degrees = BIN_DEGREES
-    cells, cell_areas = binned(normals[used], areas[used], degrees)
+    cells, cell_areas = binned(normals, areas, degrees)
     while len(cells) > max_cells:
         degrees *= 2.0
-        cells, cell_areas = binned(normals[used], areas[used], degrees)
+        cells, cell_areas = binned(normals, areas, degrees)
     return cells, cell_areas / total

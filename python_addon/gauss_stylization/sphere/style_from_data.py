@@ -46,11 +46,31 @@ def example_directions(gauss_core, source, target, depsgraph, max_directions):
     rotations (their scales are left out: a direction is a direction)."""
     normals, areas = surface.evaluated_face_normals(source, depsgraph)
     found, shares = directions.dominant_directions(gauss_core, normals, areas, max_directions)
+    return _into_target(found, source, target), shares
+
+
+def _into_target(found, source, target):
+    """Directions in ``source``'s object space turned into ``target``'s."""
     into_target = surface.world_rotation(target).T @ surface.world_rotation(source)
-    return found @ into_target.T, shares
+    return found @ into_target.T
 
 
-class OBJECT_OT_gauss_style_from_object(bpy.types.Operator):
+class _FromExample:
+    """What the operators that take a style from an example object share: the example is the other
+    selected mesh unless one is named, asked for in a dialog, and checked before use."""
+
+    def example(self):
+        """The example object, or None (reported) when ``source`` names no mesh."""
+        source = bpy.data.objects.get(self.source)
+        if source is None or source.type != 'MESH':
+            self.report({'ERROR'}, "Choose a mesh object as the example (%s)"
+                        % ("'%s' is not a mesh" % self.source if source else
+                           "there is no object '%s'" % self.source if self.source else "none chosen"))
+            return None
+        return source
+
+
+class OBJECT_OT_gauss_style_from_object(_FromExample, bpy.types.Operator):
     """Add a Custom style whose preferred normals are the dominant face directions of
     another mesh object (e.g. a low-poly example)"""
     bl_idname = "object.gauss_style_from_object"
@@ -63,28 +83,14 @@ class OBJECT_OT_gauss_style_from_object(bpy.types.Operator):
         description="Keep at most this many directions (those covering the most area); clusters of "
                     "face normals with less than %g%% of the area are always dropped" % (directions.MIN_SHARE * 100))
 
-    @classmethod
-    def poll(cls, context):
-        return poll_result(cls, _mesh_problem(context))
-
-    def invoke(self, context, event):
-        if not self.source:
-            others = [o for o in context.selected_objects if o.type == 'MESH' and o != context.active_object]
-            self.source = others[0].name if others else ""
-        return context.window_manager.invoke_props_dialog(self)
-
     def draw(self, context):
-        layout = self.layout
-        layout.prop_search(self, "source", context.scene, "objects", icon='OBJECT_DATA')
-        layout.prop(self, "max_directions")
+        super().draw(context)
+        self.layout.prop(self, "max_directions")
 
     def execute(self, context):
         obj = context.active_object
-        source = bpy.data.objects.get(self.source)
-        if source is None or source.type != 'MESH':
-            self.report({'ERROR'}, "Choose a mesh object as the example (%s)"
-                        % ("'%s' is not a mesh" % self.source if source else
-                           "there is no object '%s'" % self.source if self.source else "none chosen"))
+        source = self.example()
+        if source is None:
             return {'CANCELLED'}
         gauss_core = _core(self)
         if gauss_core is None:
@@ -109,11 +115,10 @@ def example_gauss_map(source, target, depsgraph):
     area shares M), turned as example_directions turns them (directions.gauss_map)."""
     normals, areas = surface.evaluated_face_normals(source, depsgraph)
     found, shares = directions.gauss_map(normals, areas)
-    into_target = surface.world_rotation(target).T @ surface.world_rotation(source)
-    return found @ into_target.T, shares
+    return _into_target(found, source, target), shares
 
 
-class OBJECT_OT_gauss_style_from_gauss_map(bpy.types.Operator):
+class OBJECT_OT_gauss_style_from_gauss_map(_FromExample, bpy.types.Operator):
     """Add a Gauss Map style: the whole normal distribution of another mesh object (e.g. a low-poly
     example); each face turns towards the example's nearest face direction"""
     bl_idname = "object.gauss_style_from_gauss_map"
@@ -122,26 +127,10 @@ class OBJECT_OT_gauss_style_from_gauss_map(bpy.types.Operator):
 
     source: StringProperty(name="Example", description="Mesh object whose normal distribution becomes the style")
 
-    @classmethod
-    def poll(cls, context):
-        return poll_result(cls, _mesh_problem(context))
-
-    def invoke(self, context, event):
-        if not self.source:
-            others = [o for o in context.selected_objects if o.type == 'MESH' and o != context.active_object]
-            self.source = others[0].name if others else ""
-        return context.window_manager.invoke_props_dialog(self)
-
-    def draw(self, context):
-        self.layout.prop_search(self, "source", context.scene, "objects", icon='OBJECT_DATA')
-
     def execute(self, context):
         obj = context.active_object
-        source = bpy.data.objects.get(self.source)
-        if source is None or source.type != 'MESH':
-            self.report({'ERROR'}, "Choose a mesh object as the example (%s)"
-                        % ("'%s' is not a mesh" % self.source if source else
-                           "there is no object '%s'" % self.source if self.source else "none chosen"))
+        source = self.example()
+        if source is None:
             return {'CANCELLED'}
         if _core(self) is None:
             return {'CANCELLED'}
