@@ -142,11 +142,11 @@ Weights are solved so that g = 1 at every preferred normal (Eq. 10 of the paper)
 An example's whole Gauss map as a style (kind 'gauss_map', docs/styles.md#gauss-map).
 
 normals: (K, 3) the example's face normals (normalized here), K >= 1; areas: (K,) their areas (>= 0,
-positive sum), default equal. Before each step every face looks up the 8 example normals nearest to its
-own normal (a k-d tree built here, once); its g is the sum of their bumps of sigma, each weighted by its
-pull (the example's area within 0.2 rad of it over the largest such area, square-rooted) over the sum
-of its own 8 nearest neighbours' bumps at it. Up to 64 normals, g sums them all with the weights of
-Eq. 10 times their pulls, as Style(normals) does: a cube's six give exactly the Cube preset's g.)doc")
+positive sum), default equal. Before each step every face looks up the example normal nearest to its
+own normal (a k-d tree built here, once); its g is that normal's bump of sigma weighted by its pull (the
+example's area within 0.2 rad of it over the largest such area, square-rooted). Up to 64 normals, g
+sums them all with the weights of Eq. 10 times their pulls, as Style(normals) does: a cube's six give
+exactly the Cube preset's g.)doc")
       .def_property_readonly("name", [](const Style& s) { return s.name; }, "Preset name, 'custom' or 'gauss_map'.")
       .def_property_readonly("kind", [](const Style& s) {
              switch (s.g->kind()) {
@@ -159,8 +159,8 @@ Eq. 10 times their pulls, as Style(normals) does: a cube's six give exactly the 
            "preset): it has none; each face prefers its own normal turned onto the great circle of\n"
            "its neighbours' normals, worked out by the solver before each step, so the surface bends\n"
            "one way at a time; value() is then the bump around x itself (1 everywhere). 'gauss_map'\n"
-           "(Style.gauss_map): each face prefers the example normals nearest to its own; value(x) sums the\n"
-           "weighted bumps of the 8 nearest to x.")
+           "(Style.gauss_map): each face prefers the example normal nearest to its own; value(x) is the\n"
+           "weighted bump of the one nearest to x (of all of them, summed, for up to 64 normals).")
       .def_property_readonly("areas", [](const Style& s) -> py::object {
              const gauss::ExampleNormals* e = s.g->example();
              if (e == nullptr) return py::none();

@@ -30,10 +30,7 @@ def _addon_directions():
 directions = _addon_directions()
 
 
-TERMS = 8  # PreferenceFunction::kGaussMapTerms
-
-
-def test_the_style_holds_the_example_and_g_sums_the_nearest_normals_bumps():
+def test_the_style_holds_the_example_and_g_is_the_nearest_normals_bump():
     rng = np.random.default_rng(3)
     normals = rng.normal(size=(300, 3))
     areas = rng.random(300)
@@ -42,16 +39,10 @@ def test_the_style_holds_the_example_and_g_sums_the_nearest_normals_bumps():
     assert np.isclose(s.areas.sum(), 1.0) and np.allclose(s.areas, areas / areas.sum())
     assert (s.pull > 0).all() and (s.pull <= 1).all() and s.pull.max() == 1.0
     unit = normals / np.linalg.norm(normals, axis=1)[:, None]
-
-    def nearest(x):
-        return np.argsort(-(x @ unit.T), axis=1, kind="stable")[:, :TERMS]
-
-    bumps = np.exp(5.0 * (unit @ unit.T - 1.0))
-    weights = s.pull / np.take_along_axis(bumps, nearest(unit), axis=1).sum(axis=1)
     x = rng.normal(size=(200, 3))
     x /= np.linalg.norm(x, axis=1)[:, None]
-    near = nearest(x)
-    expected = (weights[near] * np.exp(5.0 * (np.einsum("ij,ikj->ik", x, unit[near]) - 1.0))).sum(axis=1)
+    near = np.argmax(x @ unit.T, axis=1)
+    expected = s.pull[near] * np.exp(5.0 * (np.einsum("ij,ij->i", x, unit[near]) - 1.0))
     assert np.allclose(s.value(x), expected)
 
 
@@ -81,6 +72,18 @@ def test_a_turned_style_turns_its_example():
 def test_bad_examples_are_refused_with_a_message(normals, areas, message):
     with pytest.raises(ValueError, match=message):
         gauss_core.Style.gauss_map(normals, areas)
+
+
+def test_a_run_towards_a_dense_example_converges(spot):
+    # More than 64 directions: each face snaps to its nearest. Summing its 8 nearest instead (so that the
+    # chosen set changed as the face turned) kept Spot trembling at reldV 0.005-0.05 for 300 steps.
+    bunny_V, bunny_F = read_mesh(SHARED_MESHES / "bunny" / "bunny_odedstein_3301.obj")
+    cells, shares = directions.gauss_map(*face_normals(*decimated(bunny_V, bunny_F, 9)))
+    assert len(cells) > 64
+    s = gauss_core.Solver(*spot)
+    s.set_styles([gauss_core.Style.gauss_map(cells, shares)])
+    steps = s.step_until(None, 300)
+    assert steps < 300 and s.converged and np.isfinite(np.asarray(s.vertices)).all()
 
 
 def test_a_run_is_finite_and_converges_on_a_sphere():

@@ -85,18 +85,7 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p)
   if (kind_ == StyleKind::gauss_map) {
     example_ = std::make_shared<const ExampleNormals>(normals_, p.areas);
   }
-  if (kind_ == StyleKind::gauss_map && static_cast<int>(normals_.size()) > kExactNormals) {
-    // w_k = pull_k / sum of the bumps of e_k's own nearest normals at e_k (itself included).
-    example_weights_.resize(normals_.size());
-    int near[ExampleNormals::kMaxNearest];
-    for (size_t k = 0; k < normals_.size(); ++k) {
-      const int count = example_->nearest(normals_[k], kGaussMapTerms, near);
-      double sum = 0;
-      for (int i = 0; i < count; ++i) sum += std::exp(sigma_ * (normals_[k].dot(normals_[near[i]]) - 1.0));
-      example_weights_[k] = example_->pull()[k] / sum;
-    }
-    return;
-  }
+  if (kind_ == StyleKind::gauss_map && static_cast<int>(normals_.size()) > kExactNormals) return;
 
   const int K = static_cast<int>(normals_.size());
   if (K > kExactNormals) {
@@ -171,18 +160,11 @@ void PreferenceFunction::evaluate(const Eigen::Vector3d& x, const Eigen::Vector3
       evaluate(x, g, grad, hess);
       return;
     }
-    int near[kGaussMapTerms];
-    const int count = example_->nearest(preferred, kGaussMapTerms, near);
-    g = 0;
-    grad.setZero();
-    hess.setZero();
-    for (int i = 0; i < count; ++i) {
-      const Eigen::Vector3d& e = normals_[near[i]];
-      const double c = example_weights_[near[i]] * std::exp(s * (x.dot(e) - 1.0));
-      g += c;
-      grad.noalias() += (s * c) * e;
-      hess.noalias() += (s * s * c) * (e * e.transpose());
-    }
+    const int k = example_->nearest(preferred);
+    const Eigen::Vector3d& e = normals_[k];
+    g = example_->pull()[k] * std::exp(s * (x.dot(e) - 1.0));
+    grad = (s * g) * e;
+    hess = (s * s * g) * (e * e.transpose());
     return;
   }
   g = std::exp(s * (x.dot(preferred) - 1.0));
@@ -205,7 +187,7 @@ void PreferenceFunction::evaluate(const Eigen::Vector3d& x, double& g, Eigen::Ve
     return;
   }
   if (kind_ == StyleKind::gauss_map && terms_.empty()) {
-    // Piecewise: the bumps of the example normals nearest to x (constant within a cell of the sphere).
+    // Piecewise: the bump of the example normal nearest to x (one per cell of the sphere).
     evaluate(x, x, g, grad, hess);
     return;
   }

@@ -24,9 +24,9 @@ namespace gauss {
 // style's sigma around that normal.
 // gauss_map: an example's whole Gauss map (its face normals with their areas, ExampleNormals). Up to
 // kExactNormals of them g sums them all, with Eq. 10's weights times their pulls, as a directions style.
-// More: each face prefers the kGaussMapTerms example normals nearest to its normal at the start of the
-// step, and g sums their bumps, each weighted by its pull over the sum of its own nearest neighbours'
-// bumps there, so g is about the pull at each example normal (docs/styles.md#gauss-map).
+// More: each face prefers the one example normal nearest to its normal at the start of the step, and g
+// is that normal's bump weighted by its pull (Liu & Jacobson's snapping; summing several nearest bumps
+// kept most runs from converging: docs/styles.md#gauss-map).
 enum class StyleKind { directions, developable, gauss_map };
 
 struct StyleParams {
@@ -59,8 +59,6 @@ class PreferenceFunction {
   explicit PreferenceFunction(const StyleParams& params);
 
   static constexpr int kExactNormals = 64;
-  // Example normals a gauss_map style sums around a face's normal: a cube's six and their neighbours.
-  static constexpr int kGaussMapTerms = 8;
 
   double value(const Eigen::Vector3d& x) const;
   // Value, gradient (Eq. 11, 14) and Hessian (Eq. 12, 15) of g at x in one pass. A developable style
@@ -69,9 +67,9 @@ class PreferenceFunction {
   void evaluate(const Eigen::Vector3d& x, double& g, Eigen::Vector3d& grad,
                 Eigen::Matrix3d& hess) const;
   // The same for a face whose neighbourhood prefers the unit normal `preferred`: a developable style's
-  // bump exp(sigma (x.p - 1)) around p; a gauss_map style's bumps w_k exp(sigma (x.e_k - 1)) around the
-  // kGaussMapTerms example normals e_k nearest to p; a directions style ignores `preferred`. A
-  // gauss_map style without `preferred` (the one-argument evaluate) takes those nearest to x.
+  // bump exp(sigma (x.p - 1)) around p; a gauss_map style's bump pull_k exp(sigma (x.e_k - 1)) around the
+  // example normal e_k nearest to p; a directions style ignores `preferred`. A gauss_map style without
+  // `preferred` (the one-argument evaluate) takes the one nearest to x.
   void evaluate(const Eigen::Vector3d& x, const Eigen::Vector3d& preferred, double& g, Eigen::Vector3d& grad,
                 Eigen::Matrix3d& hess) const;
 
@@ -101,7 +99,6 @@ class PreferenceFunction {
   double exp_minus_2sigma_ = 0;
   std::shared_ptr<const NormalField> field_;  // shared: styles are copied into every solver
   std::shared_ptr<const ExampleNormals> example_;
-  std::vector<double> example_weights_;  // gauss_map: w_k of each example normal
   Eigen::Vector3d axis_;
   std::vector<double> offsets_;
   std::vector<double> ring_weights_;    // w'_r
