@@ -144,9 +144,9 @@ An example's whole Gauss map as a style (kind 'gauss_map', docs/styles.md#gauss-
 normals: (K, 3) the example's face normals (normalized here), K >= 1; areas: (K,) their areas (>= 0,
 positive sum), default equal. Before each step every face looks up the example normal nearest to its
 own normal (a k-d tree built here, once); its g is that normal's bump of sigma weighted by its pull (the
-example's area within 0.2 rad of it over the largest such area, square-rooted). Up to 64 normals, g
-sums them all with the weights of Eq. 10 times their pulls, as Style(normals) does: a cube's six give
-exactly the Cube preset's g.)doc")
+example's area within 0.2 rad of it over the largest such area, square-rooted). Up to 64 normals far
+enough apart that Eq. 10 weighs each positively, g sums them all with those weights times their pulls,
+as Style(normals) does: a cube's six give exactly the Cube preset's g.)doc")
       .def_property_readonly("name", [](const Style& s) { return s.name; }, "Preset name, 'custom' or 'gauss_map'.")
       .def_property_readonly("kind", [](const Style& s) {
              switch (s.g->kind()) {
@@ -160,7 +160,7 @@ exactly the Cube preset's g.)doc")
            "its neighbours' normals, worked out by the solver before each step, so the surface bends\n"
            "one way at a time; value() is then the bump around x itself (1 everywhere). 'gauss_map'\n"
            "(Style.gauss_map): each face prefers the example normal nearest to its own; value(x) is the\n"
-           "weighted bump of the one nearest to x (of all of them, summed, for up to 64 normals).")
+           "weighted bump of the one nearest to x (all of them summed, for up to 64 normals far apart).")
       .def_property_readonly("areas", [](const Style& s) -> py::object {
              const gauss::ExampleNormals* e = s.g->example();
              if (e == nullptr) return py::none();

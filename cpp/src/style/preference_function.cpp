@@ -14,17 +14,33 @@ bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
 // Solves K w = 1 for a symmetric kernel matrix K. K can be singular when the user repeats a normal;
 // the minimum-norm solution then splits the weight between the copies, which keeps g(n_k) = 1.
-std::vector<double> solve_unit_weights(const Eigen::MatrixXd& K, const char* what) {
+// Eq. 10's weights: K w = 1. False if they cannot be found to 1e-6.
+bool try_unit_weights(const Eigen::MatrixXd& K, std::vector<double>& weights) {
   const Eigen::VectorXd ones = Eigen::VectorXd::Ones(K.rows());
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(K);
   const Eigen::VectorXd w = cod.solve(ones);
-  if (!w.allFinite() || (K * w - ones).cwiseAbs().maxCoeff() > 1e-6) {
+  if (!w.allFinite() || (K * w - ones).cwiseAbs().maxCoeff() > 1e-6) return false;
+  weights.assign(w.data(), w.data() + w.size());
+  return true;
+}
+
+std::vector<double> solve_unit_weights(const Eigen::MatrixXd& K, const char* what) {
+  std::vector<double> w;
+  if (!try_unit_weights(K, w)) {
     std::ostringstream msg;
     msg << "could not normalize the style's " << what
         << " so that g = 1 at each of them; try a larger sigma or fewer, more distinct directions";
     throw std::invalid_argument(msg.str());
   }
-  return std::vector<double>(w.data(), w.data() + w.size());
+  return w;
+}
+
+Eigen::MatrixXd bump_matrix(const std::vector<Eigen::Vector3d>& normals, double sigma) {
+  const int K = static_cast<int>(normals.size());
+  Eigen::MatrixXd A(K, K);
+  for (int i = 0; i < K; ++i)
+    for (int j = 0; j < K; ++j) A(i, j) = std::exp(sigma * (normals[i].dot(normals[j]) - 1.0));
+  return A;
 }
 
 }  // namespace
@@ -82,19 +98,23 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p)
   }
   axis_ = p.rotation * (p.axis.norm() > 1e-12 ? Eigen::Vector3d(p.axis.normalized())
                                               : Eigen::Vector3d::UnitZ());
+  const int K = static_cast<int>(normals_.size());
   if (kind_ == StyleKind::gauss_map) {
     example_ = std::make_shared<const ExampleNormals>(normals_, p.areas);
+    // All the bumps are summed only where Eq. 10 gives every one a positive weight, so that g peaks at
+    // each direction (a cube, an icosahedron); crowded directions get weights of both signs and a g
+    // that pulls towards none of them, so there each face snaps to its nearest (docs/styles.md#gauss-map).
+    if (K > kExactNormals || !try_unit_weights(bump_matrix(normals_, sigma_), normal_weights_) ||
+        *std::min_element(normal_weights_.begin(), normal_weights_.end()) <= 0) {
+      normal_weights_.clear();
+      return;
+    }
   }
-  if (kind_ == StyleKind::gauss_map && static_cast<int>(normals_.size()) > kExactNormals) return;
 
-  const int K = static_cast<int>(normals_.size());
   if (K > kExactNormals) {
     field_ = std::make_shared<const NormalField>(normals_, sigma_, has_rings() ? p.axis_contribution : 1.0);
   } else if (K > 0) {
-    Eigen::MatrixXd A(K, K);
-    for (int i = 0; i < K; ++i)
-      for (int j = 0; j < K; ++j) A(i, j) = std::exp(sigma_ * (normals_[i].dot(normals_[j]) - 1.0));
-    normal_weights_ = solve_unit_weights(A, "preferred normals");
+    if (!example_) normal_weights_ = solve_unit_weights(bump_matrix(normals_, sigma_), "preferred normals");
     if (example_)  // a small example's Gauss map: every direction, weighted by its pull
       for (int k = 0; k < K; ++k) normal_weights_[k] *= example_->pull()[k];
     if (has_rings())

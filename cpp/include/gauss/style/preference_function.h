@@ -23,10 +23,10 @@ namespace gauss {
 // its neighbours' normals, so the surface bends about one axis at a time), and g is one bump of the
 // style's sigma around that normal.
 // gauss_map: an example's whole Gauss map (its face normals with their areas, ExampleNormals). Up to
-// kExactNormals of them g sums them all, with Eq. 10's weights times their pulls, as a directions style.
-// More: each face prefers the one example normal nearest to its normal at the start of the step, and g
-// is that normal's bump weighted by its pull (Liu & Jacobson's snapping; summing several nearest bumps
-// kept most runs from converging: docs/styles.md#gauss-map).
+// kExactNormals of them, if Eq. 10 weighs every one positively (they are far enough apart), g sums them
+// all with those weights times their pulls, as a directions style. Otherwise each face prefers the one
+// example normal nearest to its normal at the start of the step, and g is that normal's bump weighted by
+// its pull (Liu & Jacobson's snapping; docs/styles.md#gauss-map says what the alternatives did).
 enum class StyleKind { directions, developable, gauss_map };
 
 struct StyleParams {
