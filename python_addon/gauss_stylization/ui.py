@@ -6,7 +6,7 @@ from bpy.props import StringProperty
 from . import native, operators
 from .errors import NativeModuleError
 from .mesh import output
-from .run import replay, runs
+from .run import follow, replay, runs
 from .run.targets import stylize_objects
 from .settings import schema, styles
 from .settings.fields import Panel
@@ -88,6 +88,9 @@ class VIEW3D_PT_gauss_stylization(GaussPanel, bpy.types.Panel):
         if replay.problem(obj) is None:  # kept runs to replay
             layout.operator("object.gauss_replay", icon='FILE_REFRESH')
         draw_rows(split_column(layout), obj, obj.gauss_stylization, schema.OBJECT, Panel.MAIN)
+        following = follow.status(obj) if obj.gauss_stylization.follow_edits else ""
+        if following:
+            wrapped_label(layout, following, 'FILE_REFRESH')
         note = output.refusal_before_run(obj, context.view_layer.depsgraph)
         if note:
             wrapped_label(layout, note, 'ERROR')

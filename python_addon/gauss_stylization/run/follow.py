@@ -1,0 +1,291 @@
+"""Follow Edits: a New Object copy with ``follow_edits`` on is made again from its source whenever the
+source changes (Edit Mode, sculpting, modifiers, shape keys, the frame), as Replay would make it.
+
+A depsgraph handler notes which followed sources changed geometry (never the copies: writing a copy
+starts nothing); a timer waits until a source has been still for QUIET_SECONDS, so quick edits
+coalesce, then reads it and starts a rerun.Job on a worker thread. A newer edit cancels the job
+running. Meanwhile the copy shows a preview at once: the last exact result moved by the source's
+displacement since. The timer writes the exact result when the job is done. The source's shape last
+solved is remembered per copy, so a read that finds it unchanged (an undo of nothing, a frame that
+moves nothing) solves nothing. Scripts and background mode call ``settle()`` to wait for the copies.
+"""
+
+import time
+
+import bmesh
+import bpy
+import numpy as np
+
+from .. import app_handlers
+from ..errors import SettingsError
+from ..mesh import follow_store, mesh_io, recipe_store, source as sources
+from ..settings import schema
+from . import rerun
+
+# An edit is followed once its source has been still this long: a drag's mouse moves coalesce into
+# one solve, and a pause is still felt as at once.
+QUIET_SECONDS = 0.15
+POLL_SECONDS = 0.05  # how often the timer looks at the workers and the quiet periods
+
+# What happened, for tests and the status: jobs started, exact results written, jobs a newer edit
+# cancelled, previews shown.
+stats = {"started": 0, "finished": 0, "cancelled": 0, "previews": 0}
+
+
+class Follower:
+    """What is known of one copy (by name) between edits."""
+
+    def __init__(self):
+        self.fingerprint = None  # of the source's shape the last job started from
+        self.use_modifiers = None
+        self.input = None        # that shape ((#V,3) float32) and the exact result made from it:
+        self.result = None       # the preview of the next edit moves the one by the other's change
+        self.source = None       # the last full read (sources.Source): topology and weights for Edit Mode reads
+        self.job = None          # rerun.Job running
+        self.status = ""
+
+
+_followers = {}   # copy name -> Follower
+_dirty = {}       # copy name -> time.monotonic() of its source's latest change
+_forced = set()   # copy names re-run even if their source reads as before (after an undo)
+
+
+def status(copy):
+    """What Follow Edits says about ``copy`` (the panel's line), "" if nothing."""
+    follower = _followers.get(copy.name)
+    return follower.status if follower is not None else ""
+
+
+def _followed():
+    """{pointer of a source Object or its Mesh: [copy names]} of every copy with Follow Edits on."""
+    found = {}
+    for obj in bpy.data.objects:
+        if schema.FOLLOW_RECIPE_KEY not in obj.keys() or not obj.gauss_stylization.follow_edits:
+            continue
+        source = obj.get(follow_store.SOURCE_KEY)
+        if source is None:
+            continue
+        for key in (source.as_pointer(), source.data.as_pointer() if source.data else None):
+            if key:
+                found.setdefault(key, []).append(obj.name)
+    return found
+
+
+def _mark(names, force=False):
+    now = time.monotonic()
+    for name in names:
+        _dirty[name] = now
+        if force:
+            _forced.add(name)
+    if names and not bpy.app.timers.is_registered(_tick):
+        bpy.app.timers.register(_tick, first_interval=POLL_SECONDS)
+
+
+@bpy.app.handlers.persistent
+def _depsgraph_changed(_scene, depsgraph):
+    followed = None
+    for update in depsgraph.updates:
+        if not update.is_updated_geometry:
+            continue
+        if followed is None:
+            followed = _followed()
+            if not followed:
+                return
+        names = followed.get(update.id.original.as_pointer())
+        if names:
+            _mark(names)
+
+
+@bpy.app.handlers.persistent
+def _frame_changed(*_args):
+    names = [n for names in _followed().values() for n in names
+             if n not in _followers or _followers[n].use_modifiers is not False]
+    _mark(sorted(set(names)))
+
+
+@bpy.app.handlers.persistent
+def _undone(*_args):
+    # Undo may bring back a copy's mesh as it was before its last result: re-run even if the source
+    # reads as the last job's start.
+    _mark(sorted({n for names in _followed().values() for n in names}), force=True)
+
+
+@bpy.app.handlers.persistent
+def _loaded(*_args):
+    for follower in _followers.values():
+        if follower.job is not None:
+            follower.job.cancel()
+    _followers.clear()
+    _dirty.clear()
+    _forced.clear()
+    _mark(sorted({n for names in _followed().values() for n in names}))
+
+
+def switched(obj):
+    """Follow Edits of ``obj`` was turned on (catch up with the source) or off (stop; nothing removed)."""
+    if obj.gauss_stylization.follow_edits:
+        if follow_store.has(obj):
+            _mark([obj.name])
+        return
+    _drop(obj.name)
+
+
+def _drop(name):
+    follower = _followers.pop(name, None)
+    if follower is not None and follower.job is not None:
+        follower.job.cancel()
+        stats["cancelled"] += 1
+    _dirty.pop(name, None)
+    _forced.discard(name)
+
+
+def _read(source, follower, use_modifiers):
+    """The source's shape now (sources.Source). In Edit Mode the mesh's vertices are stale and the
+    edit mesh is current: its coordinates, on the topology last read while the counts stay; a count
+    that changes writes the edit mesh to the mesh first (the follower then reads its own write as
+    unchanged)."""
+    if use_modifiers:
+        return sources.read(source, True)
+    if source.mode == 'EDIT':
+        edit = bmesh.from_edit_mesh(source.data)
+        known = follower.source
+        if known is not None and (len(edit.verts), len(edit.faces)) == (known.arrays.num_vertices,
+                                                                        known.arrays.num_polygons):
+            coords = np.fromiter((c for v in edit.verts for c in v.co), np.float32, count=3 * len(edit.verts))
+            return known.moved(coords.reshape(-1, 3))
+        source.update_from_editmode()
+    return sources.read(source, False)
+
+
+def _start(name):
+    """Read the copy's source and start a job if it changed since the last one."""
+    copy = bpy.data.objects.get(name)
+    if copy is None or not follow_store.has(copy) or not copy.gauss_stylization.follow_edits:
+        _drop(name)
+        return
+    follower = _followers.setdefault(name, Follower())
+    why = rerun.problem(copy)
+    if why is not None:
+        follower.status = why
+        return
+    source, stored = follow_store.load(copy)
+    run = stored["run"]
+    follower.use_modifiers = run["use_modifiers"]
+    try:
+        src = _read(source, follower, run["use_modifiers"])
+    except SettingsError as exc:
+        follower.status = str(exc)
+        return
+    fingerprint = follow_store.fingerprint(src.arrays)
+    if follower.fingerprint is None:  # the kept run's start, as long as nothing else is known
+        follower.fingerprint = stored["rest_fingerprint"]
+        follower.input, follower.result = recipe_store.unpack(stored["rest"]), None
+    if fingerprint == follower.fingerprint and name not in _forced:
+        src.release()
+        return
+    _forced.discard(name)
+    try:
+        prepared = rerun.prepare(copy, src)
+    except SettingsError as exc:
+        follower.status = str(exc)
+        return
+    if follower.job is not None:
+        follower.job.cancel()
+        stats["cancelled"] += 1
+    _preview(copy, follower, prepared)
+    follower.fingerprint = fingerprint
+    if not src.evaluated:
+        follower.source = src
+    follower.job = rerun.Job(prepared).start()
+    stats["started"] += 1
+    follower.status = "Following '%s': re-running" % source.name
+
+
+def _preview(copy, follower, prepared):
+    """The last exact result moved as the source moved since: shown until the exact one is there."""
+    start = prepared.source_coords
+    if prepared.notes or follower.input is None or follower.input.shape != start.shape:
+        return
+    result = follower.result
+    if result is None:  # the kept run's own result, still in the copy
+        if len(copy.data.vertices) != len(start):
+            return
+        result = mesh_io.read_vertex_coords(copy.data)
+    if result.shape != start.shape:
+        return
+    rerun.write(copy, prepared, result + (start - follower.input))
+    stats["previews"] += 1
+
+
+def _finish(name, follower):
+    job, follower.job = follower.job, None
+    copy = bpy.data.objects.get(name)
+    if copy is None or not copy.gauss_stylization.follow_edits or not follow_store.has(copy):
+        _drop(name)
+        return
+    if job.error is not None:
+        follower.status = str(job.error)
+        return
+    if job.result is None:  # cancelled
+        return
+    if not rerun.write(copy, job.prepared, job.result):
+        _mark([name], force=True)  # the source changed again under it
+        return
+    follower.input, follower.result = job.prepared.source_coords, job.result
+    stats["finished"] += 1
+    notes = job.prepared.notes
+    follower.status = "Up to date" + (" (%s)" % "; ".join(notes) if notes else "")
+
+
+def _tick():
+    now = time.monotonic()
+    for name, since in list(_dirty.items()):
+        if now - since >= QUIET_SECONDS:
+            del _dirty[name]
+            _start(name)
+    _poll()
+    busy = _dirty or any(f.job is not None for f in _followers.values())
+    return POLL_SECONDS if busy else None
+
+
+def _poll():
+    for name, follower in list(_followers.items()):
+        if follower.job is not None and follower.job.done:
+            _finish(name, follower)
+
+
+def settle(timeout=None):
+    """Follow every pending edit now (no quiet period) and wait for the exact results; for scripts
+    and background mode, where no timer runs while a script does. True when all are written."""
+    deadline = None if timeout is None else time.monotonic() + timeout
+    for name in list(_dirty):
+        del _dirty[name]
+        _start(name)
+    while True:
+        jobs = [f.job for f in _followers.values() if f.job is not None]
+        if not jobs:
+            return True
+        for job in jobs:
+            job.wait(None if deadline is None else max(deadline - time.monotonic(), 0.0))
+        _poll()
+        if deadline is not None and time.monotonic() >= deadline:
+            return not any(f.job is not None for f in _followers.values())
+
+
+HANDLERS = (("depsgraph_update_post", _depsgraph_changed), ("frame_change_post", _frame_changed),
+            ("undo_post", _undone), ("redo_post", _undone), ("load_post", _loaded))
+
+
+def register():
+    app_handlers.add(HANDLERS)
+    schema.FOLLOW_EDITS_LISTENERS.append(switched)
+
+
+def unregister():
+    app_handlers.remove(HANDLERS)
+    if switched in schema.FOLLOW_EDITS_LISTENERS:
+        schema.FOLLOW_EDITS_LISTENERS.remove(switched)
+    if bpy.app.timers.is_registered(_tick):
+        bpy.app.timers.unregister(_tick)
+    for name in list(_followers):
+        _drop(name)
