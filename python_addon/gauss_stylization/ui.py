@@ -88,9 +88,8 @@ class VIEW3D_PT_gauss_stylization(GaussPanel, bpy.types.Panel):
         if replay.problem(obj) is None:  # kept runs to replay
             layout.operator("object.gauss_replay", icon='FILE_REFRESH')
         draw_rows(split_column(layout), obj, obj.gauss_stylization, schema.OBJECT, Panel.MAIN)
-        following = follow.status(obj) if obj.gauss_stylization.follow_edits else ""
-        if following:
-            wrapped_label(layout, following, 'FILE_REFRESH')
+        for line in follow.panel_lines(obj):
+            wrapped_label(layout, line, 'FILE_REFRESH')
         note = output.refusal_before_run(obj, context.view_layer.depsgraph)
         if note:
             wrapped_label(layout, note, 'ERROR')

@@ -265,3 +265,21 @@ def test_a_run_with_changes_mid_run_is_refused_with_a_reason(addon, follow):
     assert follow.settle(60.0)
     assert "changed while it ran" in follow.status(copy)
     assert np.array_equal(helpers.coords(copy), kept)
+
+
+def test_a_saved_file_follows_again_when_opened(addon, follow, tmp_path):
+    source, copy = _kept_copy(addon)
+    names = source.name, copy.name
+    path = str(tmp_path / "follow_edits.blend")
+    bpy.ops.wm.save_as_mainfile(filepath=path)
+    bpy.ops.wm.open_mainfile(filepath=path, load_ui=False)
+    assert names[1] in follow._dirty  # re-armed by the load
+    started = follow.stats["started"]
+    assert follow.settle(60.0)
+    assert follow.stats["started"] == started  # the source is as the kept run read it: nothing to re-run
+    source, copy = (bpy.data.objects[name] for name in names)
+    _edit(source)
+    assert follow.settle(60.0)
+    assert follow.stats["started"] == started + 1
+    assert follow.panel_lines(source) == ["'%s': %s" % (copy.name, follow.status(copy))]
+    assert np.array_equal(helpers.coords(copy), _replayed(copy))

@@ -107,7 +107,8 @@ def scenario():
     undone_from = time.monotonic() - 0.5
     yield from wait_until(lambda: follow().stats["finished"] > finished and np.array_equal(coords(copy), kept))
     check("Ctrl+Z: the copy goes back to the kept result bit for bit", times["at"] is not None,
-          "undo -> exact %s" % ("%.2f s" % (times["at"] - undone_from) if times["at"] else "never"))
+          "undo -> exact %s (%s)" % ("%.2f s" % (times["at"] - undone_from) if times["at"] else "never",
+                                     follow().stats))
     yield 0.5
     area_screenshot(os.path.join(kit.SHOTS, "follow_edits_undone.png"))
     yield from key('TAB')

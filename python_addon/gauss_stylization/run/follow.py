@@ -56,6 +56,19 @@ def status(copy):
     return follower.status if follower is not None else ""
 
 
+def panel_lines(obj):
+    """The panel's lines about Follow Edits for ``obj``: its own status as a following copy, and as a
+    source the status of each copy following it."""
+    lines = []
+    if obj.gauss_stylization.follow_edits and status(obj):
+        lines.append(status(obj))
+    for name in _followers:
+        copy = bpy.data.objects.get(name)
+        if copy is not None and copy != obj and copy.get(follow_store.SOURCE_KEY) == obj and status(copy):
+            lines.append("'%s': %s" % (name, status(copy)))
+    return lines
+
+
 def _followed():
     """{pointer of a source Object or its Mesh: [copy names]} of every copy with Follow Edits on."""
     found = {}
@@ -107,6 +120,7 @@ def _frame_changed(*_args):
 def _undone(*_args):
     # Undo may bring back a copy's mesh as it was before its last result: re-run even if the source
     # reads as the last job's start.
+    rerun.forget_written()
     _mark(sorted({n for names in _followed().values() for n in names}), force=True)
 
 
@@ -117,6 +131,7 @@ def _loaded(*_args):
             follower.job.cancel()
     _followers.clear()
     _dirty.clear()
+    rerun.forget_written()
     _forced.clear()
     _mark(sorted({n for names in _followed().values() for n in names}))
 
