@@ -283,3 +283,32 @@ def test_a_saved_file_follows_again_when_opened(addon, follow, tmp_path):
     assert follow.stats["started"] == started + 1
     assert follow.panel_lines(source) == ["'%s': %s" % (copy.name, follow.status(copy))]
     assert np.array_equal(helpers.coords(copy), _replayed(copy))
+
+
+@pytest.mark.parametrize("edit_mode", [False, True])
+def test_while_edits_go_on_the_preview_follows_them_and_nothing_is_solved(addon, follow, monkeypatch, edit_mode):
+    source, copy = _kept_copy(addon)
+    _edit(source)
+    assert follow.settle(60.0)
+    exact, start = helpers.coords(copy), helpers.coords(source)
+    monkeypatch.setattr(follow, "QUIET_SECONDS", 1e6)  # the edits never pause
+    monkeypatch.setattr(follow, "PREVIEW_SECONDS", 0.0)
+    started, previews = follow.stats["started"], follow.stats["previews"]
+    if edit_mode:
+        source.hide_set(False)
+        helpers.activate(source)
+        bpy.ops.object.mode_set(mode='EDIT')
+        edit = bmesh.from_edit_mesh(source.data)
+        for vertex in list(edit.verts)[:25]:
+            vertex.co.x += 0.04
+        bmesh.update_edit_mesh(source.data)
+        bpy.context.view_layer.update()
+    else:
+        _edit(source, (0.04, 0.0, 0.0), count=25)
+    follow._tick()
+    assert follow.stats["previews"] == previews + 1 and follow.stats["started"] == started
+    moved = np.zeros_like(start)
+    moved[:25, 0] = np.float32(0.04)
+    np.testing.assert_allclose(helpers.coords(copy), exact + moved, atol=1e-6)
+    if edit_mode:
+        bpy.ops.object.mode_set(mode='OBJECT')

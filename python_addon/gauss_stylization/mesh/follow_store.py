@@ -39,12 +39,21 @@ def fingerprint(arrays):
 
 def save(copy, source, run, arrays):
     """Keep on ``copy`` the recipe ``run`` (Session.recipe with its steps) made from ``source`` (an
-    Object) whose stylized mesh was ``arrays`` (its rest shape kept too: the first edit's preview
-    moves the copy by the source's change since)."""
+    Object) whose stylized mesh was ``arrays`` (its rest shape kept too, and replaced by the source's
+    shape at each exact re-run, save_start: the first edit's preview moves the copy by the source's
+    change since)."""
     copy[KEY] = json.dumps({"version": VERSION, "run": run, "topology": topology(arrays),
                             "rest": recipe_store.pack(arrays.coords, np.float32),
                             "rest_fingerprint": fingerprint(arrays)}, separators=(",", ":"))
     copy[SOURCE_KEY] = source
+
+
+def save_start(copy, arrays):
+    """The copy was made again from the source shape ``arrays`` (same topology as the recipe's): the
+    preview after the next edit (also in a later session) moves the copy by the source's change since."""
+    stored = json.loads(copy[KEY])
+    stored.update(rest=recipe_store.pack(arrays.coords, np.float32), rest_fingerprint=fingerprint(arrays))
+    copy[KEY] = json.dumps(stored, separators=(",", ":"))
 
 
 def has(obj):

@@ -200,6 +200,15 @@ def write(copy, prepared, coords):
             bpy.data.meshes.remove(old)
         mesh = fresh
         _written[mesh.as_pointer()] = prepared.topology
+    return write_coords(copy, coords)
+
+
+def write_coords(copy, coords):
+    """Write ``coords`` into the copy's mesh as it is (and its reference key); False if the vertex
+    count differs."""
+    mesh = copy.data
+    if len(mesh.vertices) != len(coords):
+        return False
     mesh_io.write_vertex_coords(mesh, coords)
     key = mesh_io.base_key(mesh)
     if key is not None:
