@@ -25,7 +25,7 @@ from scene_kit import activate  # noqa: E402
 from windowed_actions import area_screenshot, key, move_with_g  # noqa: E402
 
 kit.MESH = os.path.join(kit.REPO, "..", "shared", "meshes", "bunny", "bun_zipper_35947.obj")
-STEPS = 20          # the kept run's steps: the exact re-run repeats them
+STEPS = 10          # the kept run's steps: the exact re-run repeats them
 TIME_LIMIT = 600.0  # seconds: a 2-core machine busy with other builds redraws slowly
 WAIT = 60.0         # how long the copy may take to follow before the check fails
 
