@@ -26,8 +26,8 @@ from windowed_actions import area_screenshot, key, move_with_g  # noqa: E402
 
 kit.MESH = os.path.join(kit.REPO, "..", "shared", "meshes", "bunny", "bun_zipper_35947.obj")
 STEPS = 10          # the kept run's steps: the exact re-run repeats them
-TIME_LIMIT = 600.0  # seconds: a 2-core machine busy with other builds redraws slowly
-WAIT = 60.0         # how long the copy may take to follow before the check fails
+TIME_LIMIT = 900.0  # seconds: a 2-core machine busy with other builds redraws and solves slowly
+WAIT = 240.0        # how long the copy may take to follow before the check fails (a loaded machine)
 
 
 def follow():

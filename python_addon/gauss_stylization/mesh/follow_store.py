@@ -17,6 +17,7 @@ from . import recipe_store
 
 KEY = schema.FOLLOW_RECIPE_KEY
 SOURCE_KEY = "_gauss_follow_source"
+CHANGES_KEY = "_gauss_follow_changes"  # how many changes the run had while it ran, read without the JSON
 VERSION = 1
 
 
@@ -46,6 +47,7 @@ def save(copy, source, run, arrays):
                             "rest": recipe_store.pack(arrays.coords, np.float32),
                             "rest_fingerprint": fingerprint(arrays)}, separators=(",", ":"))
     copy[SOURCE_KEY] = source
+    copy[CHANGES_KEY] = len(run["events"])
 
 
 def save_start(copy, arrays):
@@ -69,6 +71,11 @@ def load(copy):
     stored = json.loads(text)
     if stored.get("version") != VERSION:
         return None
+    return source_of(copy), stored
+
+
+def source_of(copy):
+    """The copy's source Object, None when it was deleted (a look-up only)."""
     source = copy.get(SOURCE_KEY)
     try:
         # Deleted in the viewport, the pointer still holds it: an object in no collection is gone.
@@ -76,11 +83,16 @@ def load(copy):
             source = None
     except ReferenceError:
         source = None
-    return source, stored
+    return source
+
+
+def changes_during_run(copy):
+    """How many changes (settings, weights, pins) the copy's run had while it ran (a look-up only)."""
+    return copy.get(CHANGES_KEY, 0)
 
 
 def forget(copy):
     """The copy's recipe removed (a later Mesh or Shape Key run on the copy writes where it cannot follow)."""
-    for key in (KEY, SOURCE_KEY):
+    for key in (KEY, SOURCE_KEY, CHANGES_KEY):
         if key in copy.keys():
             del copy[key]

@@ -220,7 +220,11 @@ def _start(name):
     if why is not None:
         follower.status = why
         return
-    source, stored = follow_store.load(copy)
+    loaded = follow_store.load(copy)
+    if loaded is None:
+        follower.status = "The recipe of '%s' is from another version of the add-on" % name
+        return
+    source, stored = loaded
     run = stored["run"]
     follower.use_modifiers = run["use_modifiers"]
     try:
@@ -349,5 +353,8 @@ def unregister():
         schema.FOLLOW_EDITS_LISTENERS.remove(switched)
     if bpy.app.timers.is_registered(_tick):
         bpy.app.timers.unregister(_tick)
+    jobs = [f.job for f in _followers.values() if f.job is not None]
     for name in list(_followers):
         _drop(name)
+    for job in jobs:  # cancelled: each ends at its next step; none outlives the add-on (or Blender's exit)
+        job.wait(10.0)

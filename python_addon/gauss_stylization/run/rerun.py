@@ -26,14 +26,14 @@ class _NoTarget:
 
 
 def problem(copy):
-    """Why ``copy``'s run cannot be made again (None if it can)."""
-    stored = follow_store.load(copy)
-    if stored is None:
+    """Why ``copy``'s run cannot be made again (None if it can). A look-up only, as replay.problem: the
+    panel asks it at every redraw."""
+    if not follow_store.has(copy):
         return "'%s' is not a kept New Object result with a recipe" % copy.name
-    source, recipe = stored
+    source = follow_store.source_of(copy)
     if source is None:
         return "The source of '%s' was deleted" % copy.name
-    if recipe["run"]["events"]:
+    if follow_store.changes_during_run(copy):
         return ("'%s' was kept from a run whose settings, weights or pins changed while it ran; Follow Edits "
                 "and Replay of a copy re-run runs without such changes: press Stylize on '%s' again"
                 % (copy.name, source.name))
@@ -52,19 +52,14 @@ class Prepared:
         self.num_vertices = plan.num_vertices
 
 
-def read_source(copy, source):
-    """The source's Source (mesh/source.py) as the copy's run read it (Use Modifiers or not)."""
-    _source, stored = follow_store.load(copy)
-    return sources.read(source, stored["run"]["use_modifiers"])
-
-
 def prepare(copy, source_input=None):
     """A Prepared re-run of ``copy``'s recipe on ``source_input`` (a mesh/source.Source; default: read
     from the source now). Raises SettingsError (problem()). Main thread."""
     why = problem(copy)
-    if why is not None:
-        raise SettingsError(why)
-    source, stored = follow_store.load(copy)
+    stored = follow_store.load(copy) if why is None else None
+    if stored is None:
+        raise SettingsError(why or "The recipe of '%s' is from another version of the add-on" % copy.name)
+    source, stored = stored
     run = stored["run"]
     if source_input is None:
         source_input = sources.read(source, run["use_modifiers"])
@@ -187,7 +182,7 @@ def write(copy, prepared, coords):
         fresh = prepared.mesh
         prepared.mesh = None
         if fresh is None:
-            source, _stored = follow_store.load(copy)
+            source = follow_store.source_of(copy)
             if source is None or len(source.data.vertices) != len(coords):
                 return False
             fresh = source.data.copy()
