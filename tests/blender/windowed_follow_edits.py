@@ -20,7 +20,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import windowed_kit as kit  # noqa: E402  (also sets up the paths and the window options)
-from windowed_kit import addon, check, coords, override, push_undo, view3d  # noqa: E402
+from windowed_kit import addon, check, coords, override, push_undo  # noqa: E402
 from scene_kit import activate  # noqa: E402
 from windowed_actions import area_screenshot, key, move_with_g  # noqa: E402
 
