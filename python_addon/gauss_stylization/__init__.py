@@ -22,10 +22,11 @@ MODULES = (
     "settings.fields", "settings.schema", "settings.versioning", "settings.properties", "settings.settings_io",
     "settings.validation", "settings.paint_curve", "settings.styles",
     "mesh.mesh_io", "mesh.crossings", "mesh.source", "mesh.cache_modifier", "mesh.output", "mesh.recipe_store",
-    "mesh.rest_store",
+    "mesh.follow_store", "mesh.rest_store",
     "view.viewport", "view.gpu_compat", "view.sidebar",
     "run.run_interface", "run.undo_guard", "run.runs", "run.progress", "run.solver_setup", "run.session", "run.targets",
-    "run.pin_targets", "run.live_run", "run.scripted_run", "run.replay", "run.modal_events",
+    "run.pin_targets", "run.live_run", "run.scripted_run", "run.rerun", "run.replay", "run.follow",
+    "run.modal_events",
     "handles.handles", "handles.handle_tool",
     "sphere.gauss_sphere", "sphere.directions", "sphere.orientation", "sphere.surface", "sphere.sphere_overlay",
     "sphere.style_reach", "sphere.reach_overlay",
@@ -75,6 +76,7 @@ def register():
     settings.properties.register_pointer()
     settings.versioning.register_handlers()
     run.runs.register_handlers()
+    run.follow.register()
     sphere.sphere_overlay.register()
     sphere.reach_overlay.register()
     sphere.sphere_editing.register()
@@ -84,6 +86,7 @@ def register():
 
 def unregister():
     bake.farm_cli.unregister()
+    run.follow.unregister()
     run.runs.unregister_handlers()
     settings.versioning.unregister_handlers()
     run.runs.stop_all(bpy.context)  # first: a run's end is told to the event handlers below (on_end)

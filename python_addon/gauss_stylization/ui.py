@@ -6,7 +6,7 @@ from bpy.props import StringProperty
 from . import native, operators
 from .errors import NativeModuleError
 from .mesh import output
-from .run import replay, runs
+from .run import follow, replay, runs
 from .run.targets import stylize_objects
 from .settings import schema, styles
 from .settings.fields import Panel
@@ -88,6 +88,8 @@ class VIEW3D_PT_gauss_stylization(GaussPanel, bpy.types.Panel):
         if replay.problem(obj) is None:  # kept runs to replay
             layout.operator("object.gauss_replay", icon='FILE_REFRESH')
         draw_rows(split_column(layout), obj, obj.gauss_stylization, schema.OBJECT, Panel.MAIN)
+        for line in follow.panel_lines(obj):
+            wrapped_label(layout, line, 'FILE_REFRESH')
         note = output.refusal_before_run(obj, context.view_layer.depsgraph)
         if note:
             wrapped_label(layout, note, 'ERROR')

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Drive the live (modal) Stylize operator in a real Blender window under Xvfb, in nine parts
+# Drive the live (modal) Stylize operator in a real Blender window under Xvfb, in ten parts
 # (windowed_kit.py: the helpers they share):
 #   windowed_driver.py       the basics (keys, clicks, shape keys, deleting things, files)
 #   windowed_live_run.py     undo during runs, the gizmo and other clicks, several objects, messages,
@@ -14,13 +14,15 @@
 #                            Weight Paint reached by Ctrl+Tab, the header's mode menu and Paint Region
 #   windowed_self_intersections.py  Avoid Self-Intersections ticked in the panel: a live run and a
 #                            handle drag that cross the mesh through itself without it, not with it
+#   windowed_follow_edits.py Follow Edits on the 35K bunny: G in Edit Mode, the copy follows; Ctrl+Z, it goes back
 #   windowed_quit.py         quitting during a run must not save undo steps 0 in the preferences
 #   tests/blender/run_windowed.sh [BUILD_DIR]
 # Prints each part's result and "windowed summary: N passed, M failed"; exits non-zero on any
 # failure, a crash or a hang. Screenshots go to BUILD_DIR/screenshots/: the sidebar panel (sidebar_*.png,
 # settling_tooltip.png, bake_start_*.png), the Gauss sphere overlay (sphere_overlay.png), a pin handle
 # being dragged (handle_drag.png, its header: handle_drag_header.png), a live run holding vertices back
-# (self_intersections.png) and Weight Paint during a run (weight_paint_mid_run.png, sidebar_paint_region.png).
+# (self_intersections.png), Weight Paint during a run (weight_paint_mid_run.png, sidebar_paint_region.png) and a
+# copy following its source's edit and its undo (follow_edits_followed.png, follow_edits_undone.png).
 set -u
 HERE=$(cd "$(dirname "$0")" && pwd)
 BUILD=$(cd "${1:-$HERE/../../build}" && pwd) || { echo "windowed: no build dir"; exit 2; }
@@ -63,6 +65,7 @@ driver windowed_panel.py windowed_panel_result.txt
 driver windowed_undo_save.py windowed_undo_save_result.txt
 driver windowed_paint_strength.py windowed_paint_strength_result.txt
 driver windowed_self_intersections.py windowed_self_intersections_result.txt
+driver windowed_follow_edits.py windowed_follow_edits_result.txt
 
 # Quitting: the preferences live in a folder of their own, never the user's.
 CONFIG=$(mktemp -d)

@@ -4,13 +4,15 @@ recorded change at its step, its step count, then keep. The replayed runs record
 recipe afterwards is the one replayed.
 
 With the Mesh output the rest shape is written back first; with the Shape Key output the runs start
-from the basis as it is now, so a basis edited since follows. Scripts may call ``replay(obj)`` or
+from the basis as it is now, so a basis edited since follows. The copy a New Object run kept is
+made again from its source as the source is now (rerun.py), as Follow Edits makes it. Scripts may call ``replay(obj)`` or
 read the recipe with ``recipe(obj)``.
 """
 
 from ..errors import SettingsError
-from ..mesh import mesh_io, output, recipe_store
+from ..mesh import follow_store, mesh_io, output, recipe_store
 from ..settings.settings_io import apply_dict, to_dict
+from . import rerun
 from .session import Plan, Session
 
 
@@ -26,6 +28,8 @@ def recipe(obj):
 def problem(obj):
     """Why ``obj`` cannot be replayed (None if it can). A look-up only: the operator's poll asks it at
     every redraw of the sidebar, and a recipe may be megabytes of JSON (replay() reads it)."""
+    if follow_store.has(obj):
+        return rerun.problem(obj)
     if recipe_store.KEY not in obj.data:
         return "'%s' has no kept run to replay (Replay follows kept runs with Output Mesh or Shape Key)" % obj.name
     return None
@@ -37,6 +41,11 @@ def replay(obj, progress=None):
     why = problem(obj)
     if why is not None:
         raise SettingsError(why)
+    if follow_store.has(obj):  # a New Object copy: its run again from the source as it is now
+        _notes, steps = rerun.replay_copy(obj)
+        if progress is not None:
+            progress(1.0)
+        return 1, steps
     mesh = obj.data
     stored = recipe_store.load(mesh)
     if stored is None or len(mesh.vertices) != len(recipe_store.unpack(stored["rest"])):

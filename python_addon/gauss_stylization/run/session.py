@@ -21,7 +21,7 @@ import numpy as np
 
 from .. import native
 from ..errors import SettingsError
-from ..mesh import mesh_io, output, recipe_store, rest_store, source as sources
+from ..mesh import follow_store, mesh_io, output, recipe_store, rest_store, source as sources
 from ..settings import paint_curve, schema, styles
 from ..settings.fields import Live, changes
 from ..settings.settings_io import add_slot, apply_dict, to_dict
@@ -451,11 +451,15 @@ class Session:
 
     def _record(self):
         """Add this kept run to the mesh's recipe (recipe_store.py). Replay covers the Mesh and Shape
-        Key outputs of the base mesh: a run with Use Modifiers or a New Object output writes where a
-        replay from the rest shape cannot follow, so it ends the recipe (New Object leaves the mesh
-        as it was, and its recipe with it)."""
-        if self.target.kind == output.NewObjectTarget.kind or self.steps == 0:
+        Key outputs of the base mesh: a run with Use Modifiers writes where a replay from the rest
+        shape cannot follow, so it ends the recipe. A New Object run leaves the mesh as it was, and
+        its recipe with it; its own recipe goes on the copy (follow_store.py)."""
+        if self.steps == 0:
             return
+        if self.target.kind == output.NewObjectTarget.kind:  # on the copy: Follow Edits and Replay re-make it
+            follow_store.save(self.target.obj, self.obj, dict(self.recipe, steps=self.steps), self.arrays)
+            return
+        follow_store.forget(self.obj)  # a copy moved by a run of its own no longer follows its source
         if self.recipe["use_modifiers"]:
             recipe_store.save(self.mesh, None)
             return

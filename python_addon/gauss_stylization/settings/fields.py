@@ -69,7 +69,7 @@ class Field:
     relevant: owner -> bool; False where the setting has no effect (row hidden, value not checked)
     shown:    owner -> bool; whether the panel shows the row (default: where it is relevant)
     update:   (owner, context) -> None, called by Blender after the property was changed (kinds
-              that take it: Choice)
+              that take it: Choice, Bool)
     since:    the settings version (settings/versioning.py) whose rules brought today's default; objects
               written under an earlier one read ``before`` where they never set the field, so an old
               file keeps its result (object fields only)
@@ -187,7 +187,8 @@ class Bool(Field):
         self.default = bool(default if not owned else solver_default if new_objects is None else new_objects)
 
     def prop(self, _classes):
-        return BoolProperty(name=self.label, description=self.tooltip, default=self.default)
+        options = {"update": self.update} if self.update else {}
+        return BoolProperty(name=self.label, description=self.tooltip, default=self.default, **options)
 
 
 class Choice(Field):

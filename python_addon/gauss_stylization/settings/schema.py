@@ -27,6 +27,9 @@ PIN_THRESHOLD = 0.5     # a vertex is pinned when its pin-group weight is above 
 # (a mesh that keeps changing, a Tolerance below what the shape reaches), so a script always ends.
 UNTIL_CONVERGED_CAP = 5000
 NEW_OBJECT_SUFFIX = "_stylized"  # New Object output: '<name>_stylized'
+# The ID property of a New Object copy holding its run's recipe (mesh/follow_store.py): the copy
+# Follow Edits and Replay re-make from its source.
+FOLLOW_RECIPE_KEY = "_gauss_follow"
 # Style Reach's colour scale ends here: a face this many degrees or more from its preferred normal is red.
 REACH_SCALE_DEGREES = 30.0
 CUSTOM_NUMBER = 99  # enum number of Custom in saved files; presets are numbered 0, 1, ... in PRESETS order
@@ -52,6 +55,20 @@ LOOK_LAMBDA = {"sheet_metal": 20.0}
 def look_lambda(identifier):
     """The Lambda the slot's style needs to show (LOOK_LAMBDA), or None for a style that shows at any."""
     return LOOK_LAMBDA.get(identifier.lower()) if identifier != CUSTOM else None
+
+
+def _follows(settings):
+    """Follow Edits is shown where it acts: New Object output, or on a copy such a run kept."""
+    return settings.output == 'NEW_OBJECT' or FOLLOW_RECIPE_KEY in settings.id_data.keys()
+
+
+def _follow_edits_changed(settings, _context):
+    # The follower lives in run/follow.py, above this module: it registers itself here.
+    for listener in FOLLOW_EDITS_LISTENERS:
+        listener(settings.id_data)
+
+
+FOLLOW_EDITS_LISTENERS = []  # callables(obj) told when an object's Follow Edits is switched
 
 
 def _preset_sigma(identifier):
@@ -233,6 +250,10 @@ OBJECT = (
             ('NEW_OBJECT', "New Object", "Put the result into a new object '<name>%s' (same collection, "
              "transform and materials); the original stays as it is" % NEW_OBJECT_SUFFIX, 2)),
            'MESH', panel=Panel.MAIN),
+    Bool("follow_edits", "Follow Edits", "New Object output: the kept copy is made again from its source whenever "
+         "the source changes (Edit Mode, sculpting, modifiers, shape keys, the frame), off Blender's main thread; "
+         "a quick preview shows first while the edits go on (docs/interactive.md, Follow Edits)", default=False,
+         panel=Panel.MAIN, shown=_follows, update=_follow_edits_changed),
     VertexGroup("pin_group", "Pin Group", "Vertices in this group (weight above %g) keep their position"
                 % PIN_THRESHOLD, live=Live.PINS, panel=Panel.MAIN),
     Choice("uncovered", "Uncovered Faces", "Where what the styles' Regions leave of a face goes when every "
