@@ -55,22 +55,30 @@ def _into_target(found, source, target):
     return found @ into_target.T
 
 
-class _FromExample:
-    """What the operators that take a style from an example object share: the example is the other
-    selected mesh unless one is named, asked for in a dialog, and checked before use."""
-
-    def example(self):
-        """The example object, or None (reported) when ``source`` names no mesh."""
-        source = bpy.data.objects.get(self.source)
-        if source is None or source.type != 'MESH':
-            self.report({'ERROR'}, "Choose a mesh object as the example (%s)"
-                        % ("'%s' is not a mesh" % self.source if source else
-                           "there is no object '%s'" % self.source if self.source else "none chosen"))
-            return None
-        return source
+def _pick_example(operator, context):
+    """invoke() of the operators that take a style from an example object: the example is the other
+    selected mesh unless one is named, asked for in a dialog."""
+    if not operator.source:
+        others = [o for o in context.selected_objects if o.type == 'MESH' and o != context.active_object]
+        operator.source = others[0].name if others else ""
+    return context.window_manager.invoke_props_dialog(operator)
 
 
-class OBJECT_OT_gauss_style_from_object(_FromExample, bpy.types.Operator):
+def _example(operator):
+    """The example object ``operator.source`` names, or None (reported) when it names no mesh."""
+    source = bpy.data.objects.get(operator.source)
+    if source is None or source.type != 'MESH':
+        operator.report({'ERROR'}, "Choose a mesh object as the example (%s)"
+                        % ("'%s' is not a mesh" % operator.source if source else
+                           "there is no object '%s'" % operator.source if operator.source else "none chosen"))
+        return None
+    return source
+
+
+# Each operator below defines poll, invoke and draw itself and calls the helpers above: with them
+# inherited from one shared base class, neither operator's dialog opened in a real window (execute ran at
+# once, with no example chosen; the windowed drivers windowed_panel.py and windowed_live_run.py).
+class OBJECT_OT_gauss_style_from_object(bpy.types.Operator):
     """Add a Custom style whose preferred normals are the dominant face directions of
     another mesh object (e.g. a low-poly example)"""
     bl_idname = "object.gauss_style_from_object"
@@ -83,13 +91,20 @@ class OBJECT_OT_gauss_style_from_object(_FromExample, bpy.types.Operator):
         description="Keep at most this many directions (those covering the most area); clusters of "
                     "face normals with less than %g%% of the area are always dropped" % (directions.MIN_SHARE * 100))
 
+    @classmethod
+    def poll(cls, context):
+        return poll_result(cls, _mesh_problem(context))
+
+    def invoke(self, context, event):
+        return _pick_example(self, context)
+
     def draw(self, context):
-        super().draw(context)
+        self.layout.prop_search(self, "source", context.scene, "objects", icon='OBJECT_DATA')
         self.layout.prop(self, "max_directions")
 
     def execute(self, context):
         obj = context.active_object
-        source = self.example()
+        source = _example(self)
         if source is None:
             return {'CANCELLED'}
         gauss_core = _core(self)
@@ -118,7 +133,7 @@ def example_gauss_map(source, target, depsgraph):
     return _into_target(found, source, target), shares
 
 
-class OBJECT_OT_gauss_style_from_gauss_map(_FromExample, bpy.types.Operator):
+class OBJECT_OT_gauss_style_from_gauss_map(bpy.types.Operator):
     """Add a Gauss Map style: the whole normal distribution of another mesh object (e.g. a low-poly
     example); each face turns towards the example's nearest face direction"""
     bl_idname = "object.gauss_style_from_gauss_map"
@@ -127,9 +142,19 @@ class OBJECT_OT_gauss_style_from_gauss_map(_FromExample, bpy.types.Operator):
 
     source: StringProperty(name="Example", description="Mesh object whose normal distribution becomes the style")
 
+    @classmethod
+    def poll(cls, context):
+        return poll_result(cls, _mesh_problem(context))
+
+    def invoke(self, context, event):
+        return _pick_example(self, context)
+
+    def draw(self, context):
+        self.layout.prop_search(self, "source", context.scene, "objects", icon='OBJECT_DATA')
+
     def execute(self, context):
         obj = context.active_object
-        source = self.example()
+        source = _example(self)
         if source is None:
             return {'CANCELLED'}
         if _core(self) is None:
