@@ -8,6 +8,7 @@ import bmesh
 import bpy
 import numpy as np
 import pytest
+from mathutils import Vector
 
 import helpers
 
@@ -43,6 +44,19 @@ def _edit(source, offset=(0.0, 0.0, 0.05), count=40):
     coords[:count] += np.asarray(offset, np.float32)
     helpers.mesh_io.write_vertex_coords(source.data, coords)
     helpers.mesh_io.tag_changed(source.data)
+    bpy.context.view_layer.update()
+
+
+def _edit_in_edit_mode(source, offset, count):
+    """Enter Edit Mode on the source and move its first ``count`` vertices in the edit mesh, as a grab
+    there does (the mesh's own vertices stay stale until Object Mode)."""
+    source.hide_set(False)
+    helpers.activate(source)
+    bpy.ops.object.mode_set(mode='EDIT')
+    edit = bmesh.from_edit_mesh(source.data)
+    for vertex in list(edit.verts)[:count]:
+        vertex.co += Vector(offset)
+    bmesh.update_edit_mesh(source.data)
     bpy.context.view_layer.update()
 
 
@@ -188,14 +202,7 @@ def test_a_topology_change_that_drops_a_vertex_group_runs_without_it(addon, foll
 
 def test_an_edit_mode_edit_is_followed(addon, follow):
     source, copy = _kept_copy(addon)
-    source.hide_set(False)
-    helpers.activate(source)
-    bpy.ops.object.mode_set(mode='EDIT')
-    edit = bmesh.from_edit_mesh(source.data)
-    for vertex in list(edit.verts)[:30]:
-        vertex.co.z += 0.05
-    bmesh.update_edit_mesh(source.data)
-    bpy.context.view_layer.update()
+    _edit_in_edit_mode(source, (0.0, 0.0, 0.05), count=30)
     assert copy.name in follow._dirty
     assert follow.settle(60.0)
     followed = helpers.coords(copy)
@@ -295,14 +302,7 @@ def test_while_edits_go_on_the_preview_follows_them_and_nothing_is_solved(addon,
     monkeypatch.setattr(follow, "PREVIEW_SECONDS", 0.0)
     started, previews = follow.stats["started"], follow.stats["previews"]
     if edit_mode:
-        source.hide_set(False)
-        helpers.activate(source)
-        bpy.ops.object.mode_set(mode='EDIT')
-        edit = bmesh.from_edit_mesh(source.data)
-        for vertex in list(edit.verts)[:25]:
-            vertex.co.x += 0.04
-        bmesh.update_edit_mesh(source.data)
-        bpy.context.view_layer.update()
+        _edit_in_edit_mode(source, (0.04, 0.0, 0.0), count=25)
     else:
         _edit(source, (0.04, 0.0, 0.0), count=25)
     follow._tick()
