@@ -78,8 +78,8 @@ def main():
     t, cpu = time.perf_counter(), time.process_time()
     proxy = gauss_core.Proxy(V, F, target_vertices=args.target)
     made, made_cpu = time.perf_counter() - t, time.process_time() - cpu
-    _face, _bary, offset = proxy.fine_map
-    distance = np.linalg.norm(offset, axis=1) / diagonal * 100.0
+    face, _bary, offset = proxy.fine_map
+    distance = np.linalg.norm(offset[face >= 0], axis=1) / diagonal * 100.0  # face -1: in no face, not mapped
     print("proxy: %d vertices, %d faces, made in %.2f s (CPU %.2f s); mesh to proxy distance %% of the diagonal: "
           "mean %.4f, 95th %.4f, max %.4f" % (len(proxy.vertices), len(proxy.triangles), made, made_cpu, distance.mean(),
                                    np.percentile(distance, 95), distance.max()), flush=True)

@@ -11,6 +11,7 @@
 
 #include "gauss/proxy/proxy_mesh.h"
 #include "gauss/proxy/proxy_transfer.h"
+#include "gauss/util/parallel.h"
 #include "test_meshes.h"
 
 namespace {
@@ -92,6 +93,25 @@ TEST(Proxy, ClosedMeshStaysAClosedManifoldOfTheTargetSize) {
   }
   EXPECT_LT(sum / m.num_vertices(), 0.003);
   EXPECT_LT(worst, 0.02);
+}
+
+TEST(Proxy, SameForAnyThreadCount) {
+  // Large enough that chunks of space collapse in parallel (proxy_mesh.cpp, kChunks).
+  const gauss::TriangleMesh m = gauss_test::icosphere(6);  // 40,962 vertices
+  gauss::ProxyMesh one, two;
+  {
+    gauss::parallel::ScopedThreads threads(1);
+    one = make(m, 4000);
+  }
+  {
+    gauss::parallel::ScopedThreads threads(2);
+    two = make(m, 4000);
+  }
+  EXPECT_EQ(one.faces, two.faces);
+  EXPECT_EQ(one.fine_of_proxy, two.fine_of_proxy);
+  EXPECT_EQ(one.fine_face, two.fine_face);
+  EXPECT_LE(one.vertices.size(), 4000u);
+  for (const auto& [edge, count] : edge_use(one)) ASSERT_EQ(count, 2);
 }
 
 TEST(Proxy, BoundaryKeepsItsOutline) {

@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "gauss/mesh/spatial_order.h"
 #include "gauss/util/parallel.h"
 
 namespace gauss {
@@ -48,6 +49,9 @@ constexpr double kMinShape = 0.05;
 // A pass makes collapses from the cheapest this share of the candidates, so that costly ones wait
 // until the cheap ones around them changed their costs.
 constexpr double kPassShare = 0.5;
+// Chunks of space that collapse in parallel, and the fewest vertices a chunk has (below it: serial).
+constexpr int kChunks = 8;
+constexpr int kMinChunk = 4096;
 
 struct Candidate {
   double cost;
@@ -227,13 +231,36 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
   // a collapse u -> v only rewrites u's faces (u becomes v) and kills the two on edge u-v, which ring_of
   // skips; v gains faces its list lacks, so v is locked until the next pass.
   std::vector<char> locked(nv);
-  std::vector<std::pair<int, int>> ring_u, ring_v;
-  std::vector<std::pair<double, int>> partners;
-  // Can u go into v (both unlocked, ring_u from ring_of)? The link condition (the common neighbours
-  // are exactly the corners opposite edge u-v), no flipped or crushed face, no face twice.
-  const auto allowed = [&](int u, int v, bool boundary_u) {
+  // Chunks of space (kChunks runs of the Morton order) collapse on their own in parallel: a collapse
+  // whose vertices and their rings lie in one chunk reads and writes only faces and vertices of that
+  // chunk, so chunks never touch each other's data; the rest wait for a serial sweep after them. The
+  // chunks are fixed by the mesh, never by the thread count, so the proxy is the same for any.
+  std::vector<int> chunk_of(nv, 0);
+  if (nv >= kChunks * kMinChunk) {
+    std::vector<int> rank, face_order;
+    spatial_order(V, nv, F, num_faces, rank, face_order);
+    for (int i = 0; i < nv; ++i) chunk_of[i] = static_cast<int>(static_cast<int64_t>(rank[i]) * kChunks / nv);
+  }
+  // Is every vertex of `ring` in chunk `chunk` (-1: the serial sweep, anything goes)?
+  const auto inside = [&](const std::vector<std::pair<int, int>>& ring, int chunk) {
+    if (chunk < 0) return true;
+    for (const auto& r : ring)
+      if (chunk_of[r.first] != chunk) return false;
+    return true;
+  };
+  struct Scratch {
+    std::vector<std::pair<int, int>> ring_u, ring_v;
+    std::vector<std::pair<double, int>> partners;
+  };
+  // Can u go into v (both unlocked, ring_u from ring_of)? v's ring in the chunk, the link condition
+  // (the common neighbours are exactly the corners opposite edge u-v), no flipped or crushed face, no
+  // face twice.
+  const auto allowed = [&](int u, int v, bool boundary_u, int chunk, Scratch& w) {
+    const auto& ring_u = w.ring_u;
+    auto& ring_v = w.ring_v;
     bool boundary_v = false;
     if (!ring_of(v, faces, alive, &list[start[v]], start[v + 1] - start[v], ring_v, boundary_v)) return false;
+    if (!inside(ring_v, chunk)) return false;
     int common = 0, opposite = 0;
     for (size_t i = 0, j = 0; i < ring_u.size() && j < ring_v.size();) {
       if (ring_u[i].first < ring_v[j].first) {
@@ -280,6 +307,64 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
     }
     return true;
   };
+  // Makes the collapses of `order` (cheapest first) that are allowed, at most `budget`, within
+  // chunk `chunk` (-1: anywhere); the candidates it leaves because they reach out of the chunk go to
+  // `border`. Returns how many it made.
+  const auto collapse = [&](const std::vector<Candidate>& order, int chunk, int budget,
+                            std::vector<Candidate>* border) {
+    Scratch w;
+    int made = 0;
+    for (const Candidate& c : order) {
+      if (made >= budget) break;
+      const int u = c.u;
+      bool boundary_u = false;
+      if (locked[u] || !ring_of(u, faces, alive, &list[start[u]], start[u + 1] - start[u], w.ring_u, boundary_u))
+        continue;
+      if (!inside(w.ring_u, chunk)) {
+        border->push_back(c);
+        continue;
+      }
+      // Its partners now, cheapest first: the first one allowed takes it.
+      w.partners.clear();
+      for (const auto& r : w.ring_u) {
+        if (locked[r.first] || (boundary_u && r.second != 1)) continue;
+        Quadric q = Q[u];
+        q.add(Q[r.first]);
+        w.partners.push_back({q.error(X[r.first]), r.first});
+      }
+      std::sort(w.partners.begin(), w.partners.end());
+      int v = -1;
+      bool out_of_chunk = false;
+      for (const auto& partner : w.partners) {
+        if (allowed(u, partner.second, boundary_u, chunk, w)) {
+          v = partner.second;
+          break;
+        }
+        out_of_chunk |= chunk >= 0 && !inside(w.ring_v, chunk);
+      }
+      if (v < 0) {
+        if (out_of_chunk) border->push_back(c);
+        continue;
+      }
+      for (int i = start[u]; i < start[u + 1]; ++i) {
+        if (!alive[list[i]]) continue;
+        auto& t = faces[list[i]];
+        if (t[0] == v || t[1] == v || t[2] == v) {
+          alive[list[i]] = 0;
+          continue;
+        }
+        for (int k = 0; k < 3; ++k)
+          if (t[k] == u) t[k] = v;
+      }
+      Q[v].add(Q[u]);
+      into[u] = v;
+      locked[u] = locked[v] = 1;
+      ++made;
+    }
+    return made;
+  };
+  std::vector<std::vector<Candidate>> chunk_order(kChunks), chunk_border(kChunks);
+  std::vector<int> chunk_made(kChunks);
   while (remaining > target_vertices) {
     if (progress) progress->check();
     vertex_faces(nv, faces, alive, start, list);
@@ -307,44 +392,25 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
     std::sort(order.begin(), order.end());
     order.resize(std::max<size_t>(1, static_cast<size_t>(kPassShare * order.size())));
     std::fill(locked.begin(), locked.end(), 0);
+    const int wanted = remaining - target_vertices;
+    for (auto& c : chunk_order) c.clear();
+    for (const Candidate& c : order) chunk_order[chunk_of[c.u]].push_back(c);
+    // Each chunk may make its share of the collapses still wanted, the serial sweep the rest.
+    parallel::for_tasks(kChunks, nv >= kChunks * kMinChunk, [&](int chunk) {
+      chunk_border[chunk].clear();
+      const int budget = static_cast<int>(static_cast<int64_t>(wanted) * chunk_order[chunk].size() / order.size());
+      chunk_made[chunk] = collapse(chunk_order[chunk], nv >= kChunks * kMinChunk ? chunk : -1, budget,
+                                   &chunk_border[chunk]);
+    });
     int collapsed = 0;
-    for (const Candidate& c : order) {
-      if (remaining - collapsed <= target_vertices) break;
-      const int u = c.u;
-      bool boundary_u = false;
-      if (locked[u] || !ring_of(u, faces, alive, &list[start[u]], start[u + 1] - start[u], ring_u, boundary_u))
-        continue;
-      // Its partners now, cheapest first: the first one allowed takes it.
-      partners.clear();
-      for (const auto& r : ring_u) {
-        if (locked[r.first] || (boundary_u && r.second != 1)) continue;
-        Quadric q = Q[u];
-        q.add(Q[r.first]);
-        partners.push_back({q.error(X[r.first]), r.first});
-      }
-      std::sort(partners.begin(), partners.end());
-      int v = -1;
-      for (const auto& partner : partners)
-        if (allowed(u, partner.second, boundary_u)) {
-          v = partner.second;
-          break;
-        }
-      if (v < 0) continue;
-      for (int i = start[u]; i < start[u + 1]; ++i) {
-        if (!alive[list[i]]) continue;
-        auto& t = faces[list[i]];
-        if (t[0] == v || t[1] == v || t[2] == v) {
-          alive[list[i]] = 0;
-          continue;
-        }
-        for (int k = 0; k < 3; ++k)
-          if (t[k] == u) t[k] = v;
-      }
-      Q[v].add(Q[u]);
-      into[u] = v;
-      locked[u] = locked[v] = 1;
-      ++collapsed;
+    std::vector<Candidate> border;
+    for (int chunk = 0; chunk < kChunks; ++chunk) {
+      collapsed += chunk_made[chunk];
+      border.insert(border.end(), chunk_border[chunk].begin(), chunk_border[chunk].end());
     }
+    std::sort(border.begin(), border.end());
+    std::vector<Candidate> none;  // the serial sweep leaves nothing for later
+    collapsed += collapse(border, -1, wanted - collapsed, &none);
     if (collapsed == 0) break;
     remaining -= collapsed;
   }
@@ -405,22 +471,30 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
         continue;
       }
       double best_d2 = HUGE_VAL;
-      for (int j = two_start[p]; j < two_start[p + 1]; ++j) {
-        const auto& t = proxy.faces[two_list[j]];
-        const Vector3d& a = proxy.vertices[t[0]];
-        const Vector3d& b = proxy.vertices[t[1]];
-        const Vector3d& c = proxy.vertices[t[2]];
-        const Vector3d w = closest_barycentric(X[i], a, b, c);
-        const Vector3d point = w[0] * a + w[1] * b + w[2] * c;
-        const double d2 = (X[i] - point).squaredNorm();
-        if (d2 < best_d2) {
-          best_d2 = d2;
-          proxy.fine_face[i] = two_list[j];
-          proxy.fine_bary[i] = {static_cast<float>(w[1]), static_cast<float>(w[2])};
-          const Vector3d d = X[i] - point;
-          proxy.fine_offset[i] = {static_cast<float>(d.x()), static_cast<float>(d.y()), static_cast<float>(d.z())};
+      Vector3d best_w(1, 0, 0);
+      const auto nearest = [&](const int* faces_begin, const int* faces_end) {
+        for (const int* g = faces_begin; g != faces_end; ++g) {
+          const auto& t = proxy.faces[*g];
+          const Vector3d& a = proxy.vertices[t[0]];
+          const Vector3d& b = proxy.vertices[t[1]];
+          const Vector3d& c = proxy.vertices[t[2]];
+          const Vector3d w = closest_barycentric(X[i], a, b, c);
+          const Vector3d point = w[0] * a + w[1] * b + w[2] * c;
+          const double d2 = (X[i] - point).squaredNorm();
+          if (d2 < best_d2) {
+            best_d2 = d2;
+            best_w = w;
+            proxy.fine_face[i] = *g;
+            proxy.fine_bary[i] = {static_cast<float>(w[1]), static_cast<float>(w[2])};
+            const Vector3d d = X[i] - point;
+            proxy.fine_offset[i] = {static_cast<float>(d.x()), static_cast<float>(d.y()), static_cast<float>(d.z())};
+          }
         }
-      }
+      };
+      // The proxy vertex's own faces first; their neighbours' too only where the nearest point found
+      // lies on the rim of a face (the vertex may then be nearer to a face beyond).
+      nearest(plist.data() + pstart[p], plist.data() + pstart[p + 1]);
+      if (!(best_w.minCoeff() > 0.0)) nearest(two_list.data() + two_start[p], two_list.data() + two_start[p + 1]);
     }
   });
   return proxy;
