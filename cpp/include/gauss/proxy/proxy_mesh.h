@@ -7,14 +7,16 @@
 // is), cheapest first by the quadric error of Garland and Heckbert: flat parts lose their vertices
 // before curved ones, and a boundary loses vertices only along itself. So every proxy vertex is a
 // vertex of the fine mesh. Collapses run in passes: each pass ranks every vertex's cheapest collapse
-// and makes the cheap half of them that do not touch one another (a collapse locks the ring it
-// changes until the next pass), refusing those that would make the surface non-manifold (the link
-// condition), flip or crush a triangle, or duplicate a face. Vertices on non-manifold edges or of
+// and tries the cheap half of them (a vertex merged into is locked until the next pass, whose
+// adjacency is rebuilt), refusing those that would make the surface non-manifold (the link
+// condition), flip or crush a triangle, or duplicate a face. Chunks of space collapse in parallel
+// (proxy_mesh.cpp); the result does not depend on the thread count. Vertices on non-manifold edges or of
 // non-manifold fans never move; a connected part keeps at least a tetrahedron.
 //
 // Each fine vertex is mapped to the closest point of the proxy faces around the proxy vertex it was
-// collapsed into (their two-ring): the face, the point's barycentric coordinates, and the offset from
-// that point to the fine vertex (the sculpted detail), in rest coordinates.
+// collapsed into (its faces, and its neighbours' too where that point lies on a face's rim): the face,
+// the point's barycentric coordinates, and the offset from that point to the fine vertex (the sculpted
+// detail), in rest coordinates.
 #include <array>
 #include <cstdint>
 #include <vector>
