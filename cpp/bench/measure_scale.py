@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Scale measurement: set-up time, time per step and memory of the solver on a ~1M-face mesh.
 
-The mesh is a lumpy sphere made from a subdivided cube, n by n quads per side (n = 289: 501,128
-vertices, 1,002,252 faces), generated here with numpy. Runs through gauss_core as the add-on does;
+The mesh is scale_mesh.cube_sphere, a lumpy sphere made from a subdivided cube, n by n quads per side
+(n = 289: 501,128 vertices, 1,002,252 faces). Runs through gauss_core as the add-on does;
 scripts/measure_scale.sh wraps it in /usr/bin/time -v for the peak resident set size.
 
 usage: measure_scale.py [--n 289] [--steps 5] [--style NAME] [--threads N]   (style: gauss_core.DEFAULTS)
@@ -20,39 +20,11 @@ import numpy as np
 REPO = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(pathlib.Path(os.environ.get("GAUSS_BUILD_DIR", REPO / "build")) / "python"))
 import gauss_core  # noqa: E402
+from scale_mesh import cube_sphere  # noqa: E402  (the generated mesh, shared with Blender's measurements)
 
 
 def peak_rss_mb():
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # Linux: kilobytes
-
-
-def cube_sphere(n):
-    """Closed, consistently oriented sphere from a cube with n by n quads per side (6n^2+2 vertices)."""
-    u, v = np.meshgrid(np.arange(n + 1), np.arange(n + 1), indexing="ij")
-    keys, faces = [], []
-    for axis in range(3):
-        for side in (0, n):
-            c = np.empty((n + 1, n + 1, 3), np.int64)
-            c[..., axis] = side
-            c[..., (axis + 1) % 3] = u
-            c[..., (axis + 2) % 3] = v
-            keys.append((c[..., 0] * (n + 1) + c[..., 1]) * (n + 1) + c[..., 2])
-    keys = np.stack(keys)  # (6, n+1, n+1) lattice keys
-    unique, index = np.unique(keys.ravel(), return_inverse=True)
-    index = index.reshape(keys.shape)
-    for f, side in enumerate([0, n] * 3):
-        p00, p10 = index[f, :-1, :-1].ravel(), index[f, 1:, :-1].ravel()
-        p11, p01 = index[f, 1:, 1:].ravel(), index[f, :-1, 1:].ravel()
-        if side == n:
-            faces += [np.stack([p00, p10, p11], 1), np.stack([p00, p11, p01], 1)]
-        else:
-            faces += [np.stack([p00, p11, p10], 1), np.stack([p00, p01, p11], 1)]
-    k = unique
-    P = np.stack([k // ((n + 1) ** 2), (k // (n + 1)) % (n + 1), k % (n + 1)], 1) * (2.0 / n) - 1.0
-    P /= np.linalg.norm(P, axis=1, keepdims=True)
-    P *= 1.0 + 0.05 * np.sin(5 * P[:, :1]) * np.cos(3 * P[:, 1:2])  # lumpy, so the style has work to do
-    P *= [1.1, 0.9, 0.8]
-    return np.ascontiguousarray(P), np.ascontiguousarray(np.concatenate(faces).astype(np.int32))
 
 
 def main():

@@ -20,4 +20,5 @@ PYBIND11_MODULE(gauss_core, m) {
   gauss_python::bind_style(m);
   gauss_python::bind_solver(m);
   gauss_python::bind_self_intersections(m);
+  gauss_python::bind_proxy(m);
 }

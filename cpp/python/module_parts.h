@@ -17,5 +17,7 @@ void bind_style(pybind11::module_& m);
 void bind_solver(pybind11::module_& m);
 // self_intersections (collision_bindings.cpp): the pairs of faces that pass through each other.
 void bind_self_intersections(pybind11::module_& m);
+// Proxy (proxy_bindings.cpp): a simplified copy of a large mesh and the transfer of its deformation.
+void bind_proxy(pybind11::module_& m);
 
 }  // namespace gauss_python

@@ -8,6 +8,8 @@
 
 #include <Eigen/Geometry>
 
+#include "gauss/proxy/proxy_mesh.h"
+#include "gauss/proxy/proxy_transfer.h"
 #include "gauss/sparse/cholesky_solver.h"
 #include "gauss/solver/gauss_solver.h"
 #include "gauss/style/presets.h"
@@ -138,5 +140,24 @@ TEST(StepAllocations, CholeskySolveDoesNotAllocate) {
   s.solve_ordered_in_place(y.data());  // warm-up: the thread pool starts its workers
   const long before = g_allocations.load();
   for (int i = 0; i < 3; ++i) s.solve_ordered_in_place(y.data());
+  EXPECT_EQ(g_allocations.load() - before, 0);
+}
+
+TEST(StepAllocations, ProxyTransferDoesNotAllocate) {
+  // A live tick on a large mesh carries the proxy's shape to it (proxy_transfer.h): big enough for the
+  // parallel loops over the proxy's vertices and faces and the mesh's vertices.
+  const gauss::TriangleMesh m = gauss_test::icosphere(6);  // 40,962 vertices
+  const gauss::ProxyMesh proxy = gauss::proxy_mesh(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), 8000);
+  gauss::ProxyTransfer data = gauss::proxy_transfer_precomputation(proxy);
+  std::vector<float> P;
+  for (const auto& p : proxy.vertices) P.insert(P.end(), {float(1.1 * p.x()), float(p.y()), float(0.9 * p.z())});
+  std::vector<double> Pd(P.begin(), P.end());
+  std::vector<float> out(m.V.size());
+  gauss::proxy_transfer(data, P.data(), out.data());  // warm-up: the thread pool starts its workers
+  const long before = g_allocations.load();
+  for (int i = 0; i < 3; ++i) {
+    gauss::proxy_transfer(data, P.data(), out.data());
+    gauss::proxy_transfer(data, Pd.data(), out.data());
+  }
   EXPECT_EQ(g_allocations.load() - before, 0);
 }

@@ -8,7 +8,7 @@ import re
 
 from conftest import REPO
 
-FOLDERS = ("util", "mesh", "collision", "sparse", "style", "solver")  # bottom first
+FOLDERS = ("util", "mesh", "collision", "sparse", "style", "solver", "proxy")  # bottom first
 INCLUDE = re.compile(r'^\s*#\s*include\s+"gauss/(?:(\w+)/)?(\w+)\.h"', re.M)
 
 

@@ -19,7 +19,7 @@ PHASES = ["topology", "weights", "ordering", "symbolic", "factorizing"]
 
 def _cube_sphere(n):
     """The lumpy cube-sphere of scripts/measure_scale.sh (6 n^2 + 2 vertices)."""
-    spec = importlib.util.spec_from_file_location("measure_scale", REPO / "cpp" / "bench" / "measure_scale.py")
+    spec = importlib.util.spec_from_file_location("scale_mesh", REPO / "cpp" / "bench" / "scale_mesh.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module.cube_sphere(n)
