@@ -255,23 +255,122 @@ def test_a_deleted_copy_stops_its_job(addon, follow):
     assert name not in follow._followers
 
 
-def test_a_run_with_changes_mid_run_is_refused_with_a_reason(addon, follow):
+def _live_changes(source, targets):
+    """A live run of ``source`` (New Object output) with what an artist changes while it runs: Lambda
+    typed into the sidebar at tick 4, and a handle dragged to ``targets`` (its pins' positions, a
+    little further each tick) over ticks 6 to 11; kept. Returns the copy it made."""
+    before = set(bpy.data.objects)
+    live = helpers.live_run([source])
+    session = live.sessions[0]
+    for tick in range(16):
+        if tick == 4:
+            source.gauss_stylization.lam = 7.5
+        if 6 <= tick < 12:
+            session.move_pins(targets + [0.0, 0.0, 0.02 * (tick - 5)])
+        live.tick(budget=1e9)
+    live.keep()
+    made = set(bpy.data.objects) - before
+    assert len(made) == 1
+    return made.pop()
+
+
+def _source_with_a_handle():
     source = helpers.suzanne(levels=1)
     helpers.add_slot(source, 'CUBE')
+    top = [v.index for v in source.data.vertices if v.co.z > 0.6]
+    helpers.add_group(source, "Top", top)
+    source.gauss_stylization.pin_group = "Top"
+    source.gauss_stylization.output = 'NEW_OBJECT'
+    source.gauss_stylization.follow_edits = True
+    return source, helpers.coords(source)[top].astype(np.float64)
+
+
+def test_a_run_with_changes_while_it_ran_is_made_again_bit_for_bit(addon, follow):
+    source, targets = _source_with_a_handle()
+    copy = _live_changes(source, targets)
+    kept = helpers.coords(copy)
+    events = follow_store_events(addon, copy)
+    assert sum("settings" in e for e in events) == 1 and sum("pins" in e for e in events) == 6
+    follow._mark([copy.name], force=True)  # as after an undo: re-run though the source reads as before
+    assert follow.settle(60.0)
+    assert follow.status(copy).startswith("Up to date")
+    assert np.array_equal(helpers.coords(copy), kept)
+    assert np.array_equal(_replayed(copy), kept)
+
+
+def test_an_edit_is_followed_with_the_runs_changes_made_again(addon, follow):
+    # The edit moves vertices away from the handle; the followed copy is what the same live run, with the
+    # same Lambda change and the handle dragged to the same places, gives on the edited source.
+    source, targets = _source_with_a_handle()
+    copy = _live_changes(source, targets)
+    kept = helpers.coords(copy)
+    low = np.flatnonzero(helpers.coords(source)[:, 2] < -0.3)
+    coords = helpers.coords(source)
+    coords[low] += np.float32(0.05)
+    helpers.mesh_io.write_vertex_coords(source.data, coords)
+    helpers.mesh_io.tag_changed(source.data)
+    bpy.context.view_layer.update()
+    assert follow.settle(60.0)
+    followed = helpers.coords(copy)
+    assert not np.array_equal(followed, kept) and np.isfinite(followed).all()
+    source.gauss_stylization.lam = 4.0  # as it was when the kept run started
+    source.gauss_stylization.follow_edits = False
+    fresh = _live_changes(source, targets)
+    assert fresh != copy
+    assert np.array_equal(followed, helpers.coords(fresh))
+
+
+def test_a_topology_change_makes_the_settings_changes_again_without_the_handle(addon, follow):
+    source, targets = _source_with_a_handle()
+    copy = _live_changes(source, targets)
+    bm = bmesh.new()
+    bm.from_mesh(source.data)
+    bmesh.ops.subdivide_edges(bm, edges=bm.edges[:40], cuts=1, use_grid_fill=True)
+    bm.to_mesh(source.data)
+    bm.free()
+    source.data.update()
+    bpy.context.view_layer.update()
+    assert follow.settle(60.0)
+    status = follow.status(copy)
+    assert "from scratch" in status and "handle moves" in status
+    followed = helpers.coords(copy)
+    assert len(followed) == len(source.data.vertices) and np.isfinite(followed).all()
+    assert np.array_equal(followed, _replayed(copy))
+
+
+def test_a_region_repainted_while_it_ran_is_made_again_bit_for_bit(addon, follow):
+    source = helpers.suzanne(levels=1)
+    helpers.add_slot(source, 'CUBE')
+    rest = helpers.coords(source)
+    helpers.add_group(source, "Paint", np.flatnonzero(rest[:, 2] > 0.0), weight=0.3)
+    source.gauss_stylization.styles[0].vertex_group = "Paint"
     source.gauss_stylization.output = 'NEW_OBJECT'
     source.gauss_stylization.follow_edits = True
     live = helpers.live_run([source])
-    for tick in range(10):
-        if tick == 4:
-            source.gauss_stylization.lam = 7.5  # typed into the sidebar mid-run
+    try:
+        for _ in range(5):
+            live.tick(budget=1e9)
+        bpy.ops.object.mode_set(mode='WEIGHT_PAINT')
+        source.vertex_groups["Paint"].add(list(range(len(rest))), 0.9, 'REPLACE')  # the strokes
         live.tick(budget=1e9)
+        bpy.ops.object.mode_set(mode='OBJECT')
+        for _ in range(8):
+            live.tick(budget=1e9)
+    finally:
+        if source.mode != 'OBJECT':
+            bpy.ops.object.mode_set(mode='OBJECT')
     live.keep()
     copy = bpy.data.objects[source.name + "_stylized"]
     kept = helpers.coords(copy)
-    _edit(source)
+    assert [e.get("repainted") for e in follow_store_events(addon, copy)] == [["REGIONS"]]
+    source.vertex_groups["Paint"].add(list(range(len(rest))), 0.1, 'REPLACE')  # painted again since
+    follow._mark([copy.name], force=True)
     assert follow.settle(60.0)
-    assert "changed while it ran" in follow.status(copy)
     assert np.array_equal(helpers.coords(copy), kept)
+
+
+def follow_store_events(addon, copy):
+    return addon.mesh.follow_store.load(copy)[1]["run"]["events"]
 
 
 def test_a_saved_file_follows_again_when_opened(addon, follow, tmp_path):

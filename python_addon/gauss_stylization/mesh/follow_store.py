@@ -17,7 +17,6 @@ from . import recipe_store
 
 KEY = schema.FOLLOW_RECIPE_KEY
 SOURCE_KEY = "_gauss_follow_source"
-CHANGES_KEY = "_gauss_follow_changes"  # how many changes the run had while it ran, read without the JSON
 VERSION = 1
 
 
@@ -47,7 +46,6 @@ def save(copy, source, run, arrays):
                             "rest": recipe_store.pack(arrays.coords, np.float32),
                             "rest_fingerprint": fingerprint(arrays)}, separators=(",", ":"))
     copy[SOURCE_KEY] = source
-    copy[CHANGES_KEY] = len(run["events"])
 
 
 def save_start(copy, arrays):
@@ -86,13 +84,8 @@ def source_of(copy):
     return source
 
 
-def changes_during_run(copy):
-    """How many changes (settings, weights, pins) the copy's run had while it ran (a look-up only)."""
-    return copy.get(CHANGES_KEY, 0)
-
-
 def forget(copy):
     """The copy's recipe removed (a later Mesh or Shape Key run on the copy writes where it cannot follow)."""
-    for key in (KEY, SOURCE_KEY, CHANGES_KEY):
+    for key in (KEY, SOURCE_KEY):
         if key in copy.keys():
             del copy[key]

@@ -2,9 +2,10 @@
 what Replay does on a copy, and what Follow Edits (follow.py) runs on a worker thread.
 
 ``prepare(copy, source)`` reads everything on the main thread (the recorded settings and weights
-put through a session.Plan, as the kept run read its own); ``Job(prepared).compute()`` then runs the
-solver from those arrays alone, as session.Session ran it (set-up, styles, Regions, one step at a
-time), so it may run on any thread and its result is the kept run's bit for bit on an unchanged
+put through a session.Plan, as the kept run read its own, and each change the run had while it ran
+turned into its solver calls); ``Job(prepared).compute()`` then runs the solver from those arrays
+alone, as session.Session ran it (set-up, styles, Regions, one step at a time, each change at its
+step), so it may run on any thread and its result is the kept run's bit for bit on an unchanged
 source. A source whose topology changed is re-run from scratch: the recipe's settings on the new
 mesh, with the source's own vertex groups instead of the recorded weights, which fit it no longer.
 """
@@ -16,8 +17,11 @@ import numpy as np
 
 from ..errors import SettingsError
 from ..mesh import follow_store, mesh_io, recipe_store, source as sources
+from ..settings import schema
+from ..settings.fields import Live, changes
 from ..settings.settings_io import apply_dict, to_dict
-from .session import Plan
+from ..settings.validation import check_settings
+from .session import Plan, run_calls, solver_changes
 
 
 class _NoTarget:
@@ -33,19 +37,17 @@ def problem(copy):
     source = follow_store.source_of(copy)
     if source is None:
         return "The source of '%s' was deleted" % copy.name
-    if follow_store.changes_during_run(copy):
-        return ("'%s' was kept from a run whose settings, weights or pins changed while it ran; Follow Edits "
-                "and Replay of a copy re-run runs without such changes: press Stylize on '%s' again"
-                % (copy.name, source.name))
     return None
 
 
 class Prepared:
     """What a Job needs, read on the main thread: plan (session.Plan), steps, notes (what the
-    artist is told: a topology change), source_coords (what was stylized, (#V,3) float32)."""
+    artist is told: a topology change), source_coords (what was stylized, (#V,3) float32), and
+    changes: {step: [change]}, the run's recorded changes as _recorded_changes made them."""
 
-    def __init__(self, plan, steps, notes, mesh=None):
+    def __init__(self, plan, steps, notes, mesh=None, changes=None):
         self.plan, self.steps, self.notes = plan, steps, notes
+        self.changes = changes or {}
         self.topology = follow_store.topology(plan.arrays)
         self.mesh = mesh  # the evaluated mesh to become the copy's after a topology change (Use Modifiers)
         self.source_coords = plan.arrays.coords
@@ -85,6 +87,7 @@ def prepare(copy, source_input=None):
     try:
         apply_dict(settings, applied)
         plan = Plan(copy, source=source_input, target=_NoTarget(), weights=weights)
+        recorded = _recorded_changes(copy, plan, run["events"], fits=not changed, notes=notes)
     except BaseException:
         source_input.release()
         raise
@@ -94,7 +97,64 @@ def prepare(copy, source_input=None):
     # reads only its arrays.
     mesh = source_input.adopt_mesh() if changed else None
     plan.release()
-    return Prepared(plan, run["steps"], notes, mesh)
+    return Prepared(plan, run["steps"], notes, mesh, recorded)
+
+
+def _recorded_changes(copy, plan, events, fits, notes):
+    """The changes a run had while it ran (recipe_store.py's events: settings, repainted weights, pin
+    moves) as what Job makes at each step: {step: [("calls", calls, pins) or ("pins", rows, targets)]},
+    the same solver calls, in the same order, as the kept run and Replay made (Session.replay_event).
+    Each settings change is put through session.solver_changes here, on the main thread, with the
+    copy's settings set as they were at that step (the caller puts them back). ``fits``: the recorded
+    weights and pinned rows fit the source's mesh; after a topology change they do not, and only the
+    settings changes are made again (the source's own weights for all of them). A handle's moves are
+    the positions the artist dragged it to, as Replay makes them. Raises SettingsError."""
+    settings = copy.gauss_stylization
+    applied, weights = plan.applied, plan.weights
+    recorded, dropped = {}, False
+    for event in events:
+        at = recorded.setdefault(event["step"], [])
+        if "pins" in event:
+            if fits:
+                at.append(("pins", recipe_store.unpack(event["rows"]), recipe_store.unpack(event["pins"])))
+            dropped = dropped or not fits
+            continue
+        changed_settings = dict(event["settings"])
+        changed_settings.pop("follow_edits", None)  # the copy's own switch, as in prepare()
+        apply_dict(settings, changed_settings)
+        repainted = set()
+        if "weights" in event:
+            if fits:
+                weights = dict(weights, **{g: recipe_store.unpack(w) for g, w in event["weights"].items()})
+                repainted = {Live[name] for name in event["repainted"]}
+            dropped = dropped or not fits
+        wanted = to_dict(settings)
+        changed = changes(schema.OBJECT, applied, wanted) | repainted
+        if changed:
+            try:
+                check_settings(copy, settings, weights)
+            except SettingsError as exc:
+                raise SettingsError("The run of '%s' cannot be made again at its step %d: %s"
+                                    % (copy.name, event["step"], exc)) from exc
+            at.append(("calls",) + solver_changes(plan, copy, settings, applied, changed, weights))
+        applied = wanted
+    if dropped:
+        notes.append("without the run's repaints and handle moves, which fit the old mesh")
+    return recorded
+
+
+def _make(solver, change):
+    """One of _recorded_changes' changes, made on ``solver``."""
+    if change[0] == "pins":
+        _kind, rows, targets = change
+        now = np.array(solver.pin_positions, np.float64)
+        now[rows] = targets
+        solver.set_pin_positions(now)
+        return
+    _kind, calls, pins = change
+    run_calls(solver, calls)
+    if pins is not None:
+        solver.set_pins(pins)
 
 
 class Job:
@@ -120,9 +180,12 @@ class Job:
             solver.set_styles(plan.styles)
             solver.set_face_weights(*plan.regions)
             result = np.empty_like(plan.arrays.coords)
-            for _step in range(self.prepared.steps):  # one at a time, as the kept run and Replay step
+            recorded = self.prepared.changes
+            for step in range(self.prepared.steps):  # one at a time, as the kept run and Replay step
                 if self._cancelled:
                     return None
+                for change in recorded.get(step, ()):
+                    _make(solver, change)
                 solver.step(1)
             solver.vertices_into(result)
         except gauss_core.Cancelled:

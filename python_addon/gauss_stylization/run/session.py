@@ -160,6 +160,49 @@ class Plan:
             raise _solver_error(exc) from exc
 
 
+def solver_changes(plan, obj, settings, applied, changed, weights):
+    """What brings a solver from the settings ``applied`` (settings_io.to_dict) to ``settings``, given
+    ``changed`` (fields.changes) and the group ``weights``: (calls, pins). calls: the solver calls in the
+    order they must run (run_calls); pins: the new pinned vertices, or None. Reads only ``plan``,
+    ``settings`` and the arrays given, and touches no solver, so a run's recorded changes can be turned
+    into calls on the main thread and made on a worker (rerun.py). Raises SettingsError on bad pins."""
+    calls = []
+    new_styles = faces = pins = None
+    if Live.STYLES in changed:
+        new_styles = styles.make_styles(plan.gauss_core, settings.styles)
+    if Live.REGIONS in changed or (Live.SETTER in changed and plan.paint_steepness !=
+                                   paint_curve.steepness(settings.method, settings.lam)):
+        faces = plan.regions_for(settings, weights)  # the paint curve follows Method and Lambda
+    if Live.PINS in changed:
+        pins = styles.pinned_vertices(weights, settings.pin_group)
+        check_pins(obj, pins, plan.arrays.triangles)
+    if Live.SETTER in changed:
+        # Only those that changed: setting one ends the solver's converged state (Tolerance
+        # excepted, which only changes what `converged` says), so a run resumes only when it should.
+        for field in schema.SOLVER_SETTERS:
+            value = field.read(settings)
+            if value != applied[field.name]:
+                calls.append((setattr, field.name, value))
+    # Never let face indices point past the style list, in either order.
+    if new_styles is not None and len(new_styles) >= len(applied["styles"]):
+        calls.append(("set_styles", new_styles))
+        new_styles = None
+    if faces is not None:
+        calls.append(("set_face_weights",) + tuple(faces))
+    if new_styles is not None:
+        calls.append(("set_styles", new_styles))
+    return calls, pins
+
+
+def run_calls(solver, calls):
+    """Make solver_changes' calls on ``solver``."""
+    for call in calls:
+        if call[0] is setattr:
+            setattr(solver, call[1], call[2])
+        else:
+            getattr(solver, call[0])(*call[1:])
+
+
 class Session:
     def __init__(self, plan, solver=None, background_pins=False):
         """plan: a Plan, or an object to plan for now; solver: plan.build_solver()'s result,
@@ -318,31 +361,8 @@ class Session:
         return any(slot["vertex_group"] and slot["vertex_group"] not in groups for slot in self.applied["styles"])
 
     def _apply(self, settings, changed):
-        solver = self.solver
-        new_styles = faces = pins = None
-        if Live.STYLES in changed:
-            new_styles = styles.make_styles(self.gauss_core, settings.styles)
-        if Live.REGIONS in changed or (Live.SETTER in changed and self.plan.paint_steepness !=
-                                       paint_curve.steepness(settings.method, settings.lam)):
-            faces = self.plan.regions_for(settings, self.weights)  # the paint curve follows Method and Lambda
-        if Live.PINS in changed:
-            pins = styles.pinned_vertices(self.weights, settings.pin_group)
-            check_pins(self.obj, pins, self.arrays.triangles)
-        if Live.SETTER in changed:
-            # Only those that changed: setting one ends the solver's converged state (Tolerance
-            # excepted, which only changes what `converged` says), so a run resumes only when it should.
-            for field in schema.SOLVER_SETTERS:
-                value = field.read(settings)
-                if value != self.applied[field.name]:
-                    setattr(solver, field.name, value)
-        # Never let face indices point past the style list, in either order.
-        if new_styles is not None and len(new_styles) >= len(self.applied["styles"]):
-            solver.set_styles(new_styles)
-            new_styles = None
-        if faces is not None:
-            solver.set_face_weights(*faces)
-        if new_styles is not None:
-            solver.set_styles(new_styles)
+        calls, pins = solver_changes(self.plan, self.obj, settings, self.applied, changed, self.weights)
+        run_calls(self.solver, calls)
         if pins is None:
             return
         self.pin_changes += 1
@@ -350,7 +370,7 @@ class Session:
             self._pin_group_before = self.applied["pin_group"]
             self.pins_setup = PinsSetup(self, pins)
         else:
-            solver.set_pins(pins)
+            self.solver.set_pins(pins)
 
     def _finish_pins(self):
         """Once a PinsSetup is done: None, or why it failed (the solver keeps its old pins, and the
