@@ -165,8 +165,8 @@ double longest_move(const Points& a, const Points& b) {
 
 // The guard's decision on a move from S to C (one stage: no longer than kStageMove) against brute
 // force: with no new contact at C it holds nothing and leaves C as it is; with one it holds some
-// vertex back, each one to a point of its way back (S + t (C - S), t = 1/2^k or 0), and leaves no new
-// contact. Returns whether C had a new contact. rest: the positions the guard's hierarchy is built on.
+// vertex back, each one no further from S than C is (slid along the faces it met, or taken back towards
+// S), and leaves no new contact. Returns whether C had a new contact. rest: the positions the guard's hierarchy is built on.
 bool guard_agrees(const Mesh& rest, const Points& S, const Points& C, const std::string& what) {
   SCOPED_TRACE(what);
   EXPECT_LE(longest_move(S, C), gauss::kStageMove) << "a staged move is not what this compares";
@@ -191,9 +191,9 @@ bool guard_agrees(const Mesh& rest, const Points& S, const Points& C, const std:
   for (size_t v = 0; v < X.size(); ++v) {
     if (X[v] == C[v]) continue;
     ++moved;
-    bool on_the_way = false;
-    for (double t = 0.5; t >= 0.125; t *= 0.5) on_the_way = on_the_way || X[v] == S[v] + t * (C[v] - S[v]);
-    EXPECT_TRUE(on_the_way || X[v] == S[v]) << "vertex " << v;
+    // Held: slid (its step without the part towards the faces it met), then shortened towards S:
+    // never further from S than its step went, and never further out than the step itself.
+    EXPECT_LE((X[v] - S[v]).norm(), (C[v] - S[v]).norm() * (1 + 1e-12)) << "vertex " << v;
   }
   EXPECT_LE(moved, held);  // a held vertex whose step was 0 does not move
   return true;
@@ -520,6 +520,31 @@ TEST(SelfIntersectionShortcuts, AContactAlreadyAtSafeHoldsOnlyItsCornersAndEnds)
     if (std::abs(safe[v].y()) > 0.015) {
       EXPECT_EQ(X[v], C[v]) << v;
     }
+}
+
+TEST(SelfIntersectionShortcuts, ASheetPressedOntoAnotherSlidesAlongIt) {
+  // A small sheet 0.005 above a larger one is moved sideways by 0.01 and down onto it (to within the
+  // contact margin). The guard takes off only the part of each held step that goes towards the other
+  // sheet: the small sheet slides the whole 0.01 and stays 0.005 above (halving its step instead kept
+  // a quarter or half of the sideways move, and a run pressed against itself stopped styling there).
+  Mesh m = sheet(8, 0.08);
+  const int offset = static_cast<int>(m.X.size());
+  const Mesh top = sheet(4, 0.03);
+  for (const Vector3d& p : top.X) m.X.push_back(p + Vector3d(0.0013, 0.0007, 0.005));
+  for (const auto& f : top.faces) m.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+  ASSERT_TRUE(contacts(m.faces, m.X).empty());
+  Points C = m.X;
+  for (int v = offset; v < static_cast<int>(C.size()); ++v) C[v] += Vector3d(0.01, 0.0, -0.00502);
+  ASSERT_GT(contacts(m.faces, C).size(), 0u) << "the move ends within the contact margin";
+  const gauss::MeshTopology topo = topology_of(m);
+  gauss::SelfIntersectionGuard guard(topo, m.X);
+  guard.start_from(m.X);
+  Points X = C;
+  EXPECT_GT(guard.limit(m.X, X), 0);
+  EXPECT_TRUE(Start(m.faces, m.X).new_contacts(X).empty());
+  for (int v = offset; v < static_cast<int>(X.size()); ++v)
+    EXPECT_LT((X[v] - (m.X[v] + Vector3d(0.01, 0.0, 0.0))).norm(), 1e-12) << v;
+  for (int v = 0; v < offset; ++v) EXPECT_EQ(X[v], m.X[v]) << v;
 }
 
 // --- Threads. ---

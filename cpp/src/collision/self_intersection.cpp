@@ -86,6 +86,7 @@ SelfIntersectionGuard::SelfIntersectionGuard(const MeshTopology& topo, const std
       star_kind_(X0.size(), kClosedStar),
       flat_star_(X0.size(), 0),
       candidate_(X0.size()),
+      aim_(X0.size()),
       step_fraction_(X0.size(), 1.0f),
       round_stamp_(X0.size(), 0) {
   // A star is one fan around its corner, closed or open, only if each of its edges has two faces
@@ -288,12 +289,27 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
   return last_held_;
 }
 
+bool SelfIntersectionGuard::slide_along(int v, int other, const std::vector<Vector3d>& safe) {
+  const auto& t = topo_->faces[other];
+  if (t[0] == v || t[1] == v || t[2] == v) return false;
+  const Vector3d n = (safe[t[1]] - safe[t[0]]).cross(safe[t[2]] - safe[t[0]]);
+  const double ln = n.norm();
+  if (!(ln > 0)) return false;
+  const Vector3d u = n / ln;
+  const Vector3d d = aim_[v] - safe[v];
+  const double side = (safe[v] - safe[t[0]]).dot(u), towards = d.dot(u);
+  if (side * towards >= 0) return false;  // moving away from the other face: sliding changes nothing
+  aim_[v] = safe[v] + d - towards * u;
+  return true;
+}
+
 void SelfIntersectionGuard::limit_stage(const std::vector<Vector3d>& safe, std::vector<Vector3d>& X) {
   const MeshTopology& topo = *topo_;
-  // A held vertex's step is halved per round down to kSmallestFraction, then taken back to `safe`
-  // outright. Only the corners of faces in a new contact step back, so the hold stays local: a pair
-  // whose six corners are all back at `safe` is as it was there, where it was not in a new contact,
-  // so every round steps some vertex back or ends the loop (at most five times per vertex). No
+  // A held vertex first slides (slide_along), then its step is halved per round down to
+  // kSmallestFraction, then taken back to `safe` outright. Only the corners of faces in a new contact
+  // step back, so the hold stays local: a pair whose six corners are all back at `safe` is as it was
+  // there, where it was not in a new contact, so every round steps some vertex back or ends the loop
+  // (at most six times per vertex). No
   // round count triggers a global rollback: that froze whole meshes (docs/quality.md).
   constexpr float kSmallestFraction = 1.0f / 8;
   held_.clear();
@@ -310,9 +326,16 @@ void SelfIntersectionGuard::limit_stage(const std::vector<Vector3d>& safe, std::
           round_stamp_[v] = stamp;
           float& t = step_fraction_[v];
           if (t == 0.0f) continue;  // already at `safe`
-          if (t == 1.0f) held_.push_back(v);
-          t = t > kSmallestFraction ? 0.5f * t : 0.0f;
-          X[v] = safe[v] + static_cast<double>(t) * (candidate_[v] - safe[v]);
+          if (t == 1.0f) held_.push_back(v), aim_[v] = candidate_[v];
+          const int other = face == static_cast<int>(key >> 32) ? static_cast<int>(key & 0xffffffffu)
+                                                                 : static_cast<int>(key >> 32);
+          if ((t == 1.0f || (t < 0.0f && t > kLastSlide)) && slide_along(v, other, safe)) {
+            t = t == 1.0f ? -1.0f : t - 1.0f;  // -1, -2, ...: slid once, twice, ...
+            X[v] = aim_[v];
+          } else {
+            t = t < 0.0f ? 0.5f : (t > kSmallestFraction ? 0.5f * t : 0.0f);
+            X[v] = safe[v] + static_cast<double>(t) * (aim_[v] - safe[v]);
+          }
           for (int i = topo.vertex_corner_start[v]; i < topo.vertex_corner_start[v + 1]; ++i)
             touched_.push_back(topo.vertex_corners[i] / 3);
         }

@@ -11,11 +11,14 @@
 // and the guard only looks at the result of a step. A step of Algorithm 1 maps the vertices from a
 // state S, free of new crossings, to a candidate C. The guard refits a bounding-volume hierarchy
 // (face_bvh.h) to C and tests the faces whose boxes overlap. Where two faces cross, or come closer
-// than kContactMargin without sharing a corner, and did not already at the start, their corners are
-// moved back towards S (x = S + t (C - S), t halved per round, then 0), and the faces around them are
-// tested again, until no new pair is left. Only the corners of faces in a new contact step back, so a
-// hold stays where the contact is (a global rollback froze whole meshes); at worst those corners are
-// back at S, which has no new contact: a step can stop short, never pass through.
+// than kContactMargin without sharing a corner, and did not already at the start, their corners first
+// slide: each keeps its step without the part that goes towards the other face's plane (at S), so a
+// surface pressed onto another goes on moving along it and the style goes on acting there. Where
+// that still touches, they are moved back towards S (x = S + t (C - S), t halved per round, then 0),
+// and the faces around them are tested again, until no new pair is left. Only the corners of faces in
+// a new contact step back, so a hold stays where the contact is (a global rollback froze whole
+// meshes); at worst those corners are back at S, which has no new contact: a step can stop short,
+// never pass through.
 // A mesh that already crosses itself keeps its crossings, and they may slide on to the neighbouring
 // faces as the surface moves (a pair whose faces each share a corner with a crossing pair's), but no
 // crossing begins anywhere else: held still, the faces around a crossing froze the region around it. This is the intersection-free line search of Incremental
@@ -97,6 +100,13 @@ class SelfIntersectionGuard {
   // Those are noted, and become allowed crossings at the end of limit() (take_slid_pairs).
   bool allowed(uint64_t key, int f, int g, const std::vector<Eigen::Vector3d>& X);
   bool next_to_crossing(int f, int g) const;
+  // A step back for corner v of a face in a new contact with face `other`: aim_[v] without the part
+  // of its step that goes towards `other`'s plane (at `safe`), so that it slides along the contact.
+  // False (aim_ unchanged) where that changes nothing.
+  bool slide_along(int v, int other, const std::vector<Eigen::Vector3d>& safe);
+  // step_fraction_ of a vertex slid k times in this limit_stage: -k; it slides at most -kLastSlide
+  // times (on different contacts), then its slid step is halved.
+  static constexpr float kLastSlide = -2.0f;
   void take_slid_pairs();
   // Pairs (f < g, as f * 2^32 + g) in contact at X, without the allowed ones if skip_allowed; sorted.
   // Into found_ (reused: a step allocates nothing once it has grown), which is returned.
@@ -126,6 +136,7 @@ class SelfIntersectionGuard {
   std::vector<Eigen::Vector3d> stage_start_;  // #V
   std::vector<uint8_t> ever_held_;        // #V: held in some stage of the current limit()
   std::vector<Eigen::Vector3d> candidate_;  // #V: the step's result before limit()
+  std::vector<Eigen::Vector3d> aim_;      // #V: where a held vertex goes now, its candidate slid
   std::vector<float> step_fraction_;      // #V: t of every vertex in the current limit(), 1 outside it
   std::vector<uint32_t> round_stamp_;     // #V: the last round that stepped the vertex back
   uint32_t stamp_count_ = 0;
