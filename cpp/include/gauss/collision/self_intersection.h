@@ -12,11 +12,11 @@
 // state S, free of new crossings, to a candidate C. The guard refits a bounding-volume hierarchy
 // (face_bvh.h) to C and tests the faces whose boxes overlap. Where two faces cross, or come closer
 // than kContactMargin without sharing a corner, and did not already at the start, their corners first
-// slide: each keeps its step without the part that goes towards the other face's plane (at S), so a
-// surface pressed onto another goes on moving along it and the style goes on acting there. Where
-// that still touches, they are moved back towards S (x = S + t (C - S), t halved per round, then 0),
-// and the faces around them are tested again, until no new pair is left. Only the corners of faces in
-// a new contact step back, so a hold stays where the contact is (a global rollback froze whole
+// slide: each keeps its step without the part that goes towards the other face's plane (at S; again
+// for a second face it then meets), so a surface pressed onto another goes on moving along it and the
+// style goes on acting there. Where that still touches, they are moved back towards S (x = S + t (A -
+// S), A the slid candidate, t halved per round, then 0), and the faces around them are tested again,
+// until no new pair is left. Only the corners of faces in a new contact step back, so a hold stays where the contact is (a global rollback froze whole
 // meshes); at worst those corners are back at S, which has no new contact: a step can stop short,
 // never pass through.
 // A mesh that already crosses itself keeps its crossings, and they may slide on to the neighbouring
