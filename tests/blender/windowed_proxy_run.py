@@ -106,10 +106,28 @@ def proxy_run(name):
     d.check("one Ctrl+Z brings the mesh back bit-exactly", np.array_equal(d.coords(bpy.data.objects[name]), original))
 
 
+def esc_while_finishing(name):
+    """Enter, then Esc while the finish runs: the mesh as before Stylize, bit for bit."""
+    obj = d.activate(bpy.data.objects[name])
+    original = d.coords(obj)
+    d.start_live_run()
+    yield from _wait(lambda: d.live_operator() is not None and d.live_operator().session is not None
+                     and d.live_operator().session.steps >= 3)
+    d.press('RET', *d.viewport_point())
+    yield 0.3
+    op = d.live_operator()
+    finishing = op is not None and op.live.finishing
+    d.press('ESC', *d.viewport_point())
+    yield from d.wait_stopped(limit=STAGE_LIMIT)
+    d.check("Esc while the finish runs restores the mesh bit-exactly",
+            finishing and d.live_operator() is None and np.array_equal(d.coords(bpy.data.objects[name]), original))
+
+
 def scenario():
     name = d.set_up()
     yield 1.0  # first redraws
     yield from proxy_run(name)
+    yield from esc_while_finishing(name)
 
 
 d.start(scenario(), "windowed_proxy_run_result.txt", time_limit=TIME_LIMIT)
