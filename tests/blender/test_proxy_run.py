@@ -179,3 +179,11 @@ def test_a_region_acts_on_the_proxy_as_painted_on_the_whole_mesh(addon):
     moved = np.linalg.norm(helpers.coords(obj) - start, axis=1)
     assert moved[start[:, 2] > middle + 0.2 * height].mean() > 2 * moved[start[:, 2] < middle - 0.2 * height].mean()
     live.cancel()
+
+
+def test_the_proxy_is_never_bigger_than_the_threshold_or_the_mesh(addon):
+    size = addon.run.proxy_run.proxy_size
+    assert size(1_003_688, 300_000) == addon.run.proxy_run.PROXY_VERTICES
+    assert size(6172, 2000) == 2000
+    assert size(6172, 6172) is None and size(100, 300_000) is None
+    assert size(150, 100) == 100
