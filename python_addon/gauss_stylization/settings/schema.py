@@ -228,7 +228,7 @@ OBJECT = (
     Int("proxy_threshold", "Proxy Threshold", "A live run on a mesh with more vertices than this stylizes a "
         "simplified copy of it (a proxy) that the whole mesh follows at every tick, and Enter finishes the whole "
         "mesh at full resolution (docs/interactive.md, Sculpt-sized meshes)", default=300000,
-        hard=(100, 2 ** 31 - 1), soft=(10000, 2000000), panel=Panel.SOLVER, text="Proxy Above"),
+        hard=(100, 2 ** 31 - 1), soft=(10000, 2000000), panel=Panel.SOLVER),
     Bool("keep_volume", "Keep Volume", "After each step scale every closed part of the mesh about its centre "
          "back to its original volume (open parts: to their original area; parts with pinned vertices are "
          "left alone), so the shape does not shrink", live=Live.SETTER, panel=Panel.SOLVER),
