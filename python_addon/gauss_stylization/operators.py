@@ -117,6 +117,8 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
         try:
             if event.type == 'TIMER':
                 return self._tick(context)
+            if self.live.finishing:
+                return self._finishing_event(context, event)
             return modal_events.dispatch(self, context, event)
         except Exception as exc:  # never leave a half-done run or a dangling timer behind
             self.stop(context, keep=False)
@@ -146,6 +148,8 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             if not live.sessions:
                 self.stop(context, keep=False)
                 return {'CANCELLED'}
+        if live.finishing:
+            return self._finish_tick(context)
         if context.mode not in {'OBJECT', 'PAINT_WEIGHT'}:
             # Edit Mode would overwrite a restore on exit, so keep what is there
             # and let Reset (which has the start coordinates) take it back. Weight Paint
@@ -168,6 +172,35 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
             self._redraw(context)
             self.show_status(context)
         return {'PASS_THROUGH'}  # other operators may own this timer event
+
+    def _finishing_event(self, context, event):
+        """While a kept proxy run is finished at full resolution only Esc (and undo, which would
+        otherwise act on a half-done run) acts: it cancels; the run's other keys and clicks wait."""
+        if event.value == 'PRESS' and (event.type == 'ESC' or (event.type == 'Z' and (event.ctrl or event.oskey))):
+            return self.end(context, keep=False, why="Stylize cancelled while finishing: mesh restored")
+        if event.type in {'RET', 'NUMPAD_ENTER', 'TAB', 'LEFTMOUSE', 'RIGHTMOUSE', 'Z'}:
+            return {'RUNNING_MODAL'}
+        return {'PASS_THROUGH'}  # navigation goes on
+
+    def _finish_tick(self, context):
+        """A tick of the full-resolution finish (live_run.start_finish); keeps the result once converged."""
+        live = self.live
+        outcome = live.finish_tick()
+        for session, why in outcome.stopped:
+            self.report({'WARNING'}, "Stylize stopped on '%s', its mesh restored: %s" % (session.name, why))
+        if not live.sessions:
+            self.cancel_keeping_edits(context)
+            return {'CANCELLED'}
+        fraction, text = live.finish_progress()
+        self._progress = self._progress or ProgressReport(context, TITLE, status=False)
+        self._progress.update(fraction, text)
+        if live.finished:
+            self.stop(context, keep=True)
+            return {'FINISHED'}
+        if outcome.stepped or time.monotonic() - self._panels_drawn > PANEL_SECONDS:
+            self._redraw(context)
+            self.show_status(context)
+        return {'PASS_THROUGH'}
 
     def _redraw(self, context):
         """The viewports at every tick, their sidebars (steps, progress) a few times a second."""
@@ -195,6 +228,10 @@ class OBJECT_OT_gauss_stylize(bpy.types.Operator):
                 self.report({'WARNING'}, "Stylize stopped on '%s': the object was deleted or its mesh "
                                          "replaced" % name)
             if self.live.sessions:
+                if not self.live.finishing and self.live.start_finish():  # a proxy run: finish it first
+                    self._progress = self._progress or ProgressReport(context, TITLE, status=False)
+                    self.show_status(context)
+                    return {'RUNNING_MODAL'}
                 self.stop(context, keep=True)
                 return {'FINISHED'}
         self.cancel_keeping_edits(context)

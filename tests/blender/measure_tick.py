@@ -15,9 +15,17 @@ little before each tick, as a mouse drag does (Handles.move ->
 Solver.set_pin_positions); the blocks between hold it. Prints "median drag tick
 ms: X (move: M) ...; holding the handles: H ...": ticks while dragging and while
 holding, measured alternately under the same load.
+
+A mesh above its Proxy Threshold runs on a proxy, as a live run does (docs/interactive.md,
+Sculpt-sized meshes): the set-up includes making the proxy, and the line says its size.
+
+--finish: after the ticks, what Enter does on a proxy run: the full-resolution finish from the
+transfer until converged at the default Tolerance. Prints "finish ms: X (set-up: S, N steps)" and
+the process's peak memory.
 """
 
 import os
+import resource
 import statistics
 import sys
 import time
@@ -38,8 +46,8 @@ class Reports:
 
 def main():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    drag = "--drag" in argv
-    argv = [a for a in argv if a != "--drag"]
+    drag, finish = "--drag" in argv, "--finish" in argv
+    argv = [a for a in argv if a not in ("--drag", "--finish")]
     build = os.path.abspath(argv[0] if argv else os.path.join(REPO, "build"))
     mesh = argv[1] if len(argv) > 1 else "bunny/bun_zipper_35947.obj"
     ticks = int(argv[2]) if len(argv) > 2 else 60
@@ -55,12 +63,13 @@ def main():
 
     if drag:
         pin_top_and_bottom(obj)
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     planned = gauss_stylization.run.targets.plan_objects(Reports(), [obj])
     live = gauss_stylization.run.live_run.LiveRun(planned)  # what the modal operator runs
     live.setup.wait()
     live.finish_setup()
     setup_ms = (time.perf_counter() - start) * 1000.0
+    setup_cpu = time.process_time() - cpu  # every thread's: on a loaded machine the wall time says little
     run = live.sessions[0]
     handles = gauss_stylization.handles.handles.Handles(run) if drag else None
     tick_ms, move_ms, held_ms = [], [], []
@@ -75,11 +84,14 @@ def main():
             move_ms.append((time.perf_counter() - start) * 1000.0)
         live.tick()
         (tick_ms if handles is None or dragging else held_ms).append((time.perf_counter() - start) * 1000.0)
-    live.cancel()
     step = statistics.median(run.step_ms)
     tick = statistics.median(tick_ms)
-    print("mesh %s: %d vertices, %d solver faces, set-up %.0f ms"
-          % (mesh, run.arrays.num_vertices, len(run.arrays.triangles), setup_ms))
+    proxy = " on a proxy of %d vertices" % run.proxy.num_vertices if run.on_proxy else ""
+    if finish:
+        finish_run(live, schema)
+    live.cancel()
+    print("mesh %s: %d vertices, %d solver faces, set-up %.0f ms (%.1f s CPU)%s"
+          % (mesh, run.arrays.num_vertices, len(run.arrays.triangles), setup_ms, setup_cpu, proxy))
     if handles is None:
         print("median tick ms: %.2f (step: %.2f, write-back + sync: %.2f) over %d ticks, %d threads"
               % (tick, step, tick - step, ticks, run.gauss_core.get_num_threads()))
@@ -89,6 +101,27 @@ def main():
           % (tick, statistics.median(move_ms), len(tick_ms), statistics.median(held_ms), len(held_ms),
              run.gauss_core.get_num_threads(), len(handles.pins), len(handles.parts),
              run.solver.factorization_count))
+
+
+def finish_run(live, schema):
+    """What Enter does on a proxy run, timed: the full-resolution set-up, then steps until converged."""
+    session = live.sessions[0]
+    session.obj.gauss_stylization.tolerance = schema.field(schema.OBJECT, "tolerance").default
+    live.tick()  # the Tolerance reaches the run, as at any tick
+    start, cpu = time.perf_counter(), time.process_time()
+    if not live.start_finish():
+        print("finish: nothing to finish (the mesh ran at full resolution)")
+        return
+    while live.finish_setup_job is not None:
+        live.finish_tick()
+        time.sleep(0.01)
+    setup = time.perf_counter() - start
+    steps = session.steps
+    while not live.finished:
+        live.finish_tick()
+    print("finish ms: %.0f (%.1f s CPU; set-up: %.0f ms, %d steps, converged: %s); peak memory %.2f GB"
+          % ((time.perf_counter() - start) * 1000.0, time.process_time() - cpu, setup * 1000.0,
+             session.steps - steps, session.converged, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1e6))
 
 
 def pin_top_and_bottom(obj, share=0.03):

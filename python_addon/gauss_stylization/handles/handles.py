@@ -79,7 +79,7 @@ class Handles:
         solver = session.solver
         self.pins = np.asarray(solver.pinned, np.int64)
         self.targets = np.asarray(solver.pin_positions, np.float64).copy()
-        self.parts = pin_parts(self.pins, session.arrays.triangles)
+        self.parts = pin_parts(self.pins, session.solve_triangles)  # a proxy's pins are the proxy's vertices
         self.part_of = np.empty(len(self.pins), np.int64)  # pin (its row) -> its part
         ends = np.cumsum([len(members) for members in self.parts], dtype=np.int64)
         self.drawn_rows = [slice(int(end) - len(members), int(end)) for end, members in zip(ends, self.parts)]

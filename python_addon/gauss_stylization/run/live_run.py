@@ -13,6 +13,11 @@ object that fails or disappears is restored and leaves the run. An object that
 has converged (its last step moved it by less than its Tolerance) is not
 stepped until a change of its settings, styles or pins makes its solver forget
 that, then it resumes by itself.
+
+An object above its Proxy Threshold runs on a proxy (proxy_run.py). Keeping the run then first
+finishes it (``start_finish()``): a full-resolution solver is set up on a worker thread, warm-started
+from the shape the proxy gave the mesh, and ticks step it until it converges (``finished``); the
+operator keeps the result only then, and Esc meanwhile restores the mesh as before the run.
 """
 
 import math
@@ -22,11 +27,12 @@ from collections import deque
 import bpy
 
 from ..errors import SettingsError
+from ..settings.schema import UNTIL_CONVERGED_CAP
 from ..settings.settings_io import objects_to_json, to_dict
 from .pin_targets import targets_json
 from .progress import progress_text, settling_details, settling_fraction, settling_text
 from .session import TIMINGS_KEPT, Session
-from .solver_setup import SolverSetup
+from .solver_setup import BackgroundSetup, SolverSetup
 from .targets import TITLE
 
 TICK_SECONDS = 0.01  # the timer of a run in the UI (a Stylize, a bake): how often it gets a tick
@@ -44,6 +50,9 @@ SAVED_REPORT = "Saved %s with the meshes as before Stylize: the live run goes on
 HELD_BACK = "held back by Avoid Self-Intersections at %d vertices"  # the guard, not convergence, stopped it
 # Steps ran away and fell back to plain ARAP (Session.unstable, docs/robustness.md).
 UNSTABLE = "unstable: lower Lambda or ADMM Iterations"
+PROXY = "on a proxy of %s vertices"  # the run solves on a proxy (proxy_run.py), the mesh follows it
+FINISHING = "Finishing at full resolution"  # after Enter on a proxy run, until it converges
+FINISH_HINT = "Esc: cancel (the mesh as before Stylize)"
 
 
 class KeysNote(str):
@@ -70,7 +79,13 @@ class LiveRun:
     def __init__(self, planned):
         """planned: targets.Planned; their solvers are set up from now on (SolverSetup)."""
         self.planned = planned
+        for plan in planned.plans:
+            plan.use_proxy()
         self.setup = SolverSetup(planned.plans)
+        self.finishing = False  # start_finish() began the full-resolution finish of a proxy run
+        self.finish_setup_job = None  # its full-resolution solvers being set up (BackgroundSetup)
+        self._finishing = []  # the sessions being finished
+        self._finish_start = {}  # session -> its steps when the finish began
         self.sessions = []
         self.paused = {}     # session -> why it cannot step now
         self.next = 0        # index of the session the next tick starts with
@@ -107,6 +122,61 @@ class LiveRun:
                 self.planned.give_up(plan)
         self.setup = None
         return skipped
+
+    # -- finishing a proxy run at full resolution ---------------------------------
+
+    def start_finish(self):
+        """After Enter: set up the full-resolution solvers of the sessions on a proxy. False (nothing
+        to finish: keep at once) if none is."""
+        self._finishing = [session for session in self.sessions if session.on_proxy]
+        if not self._finishing:
+            return False
+        self.finishing = True
+        tasks = [session.finish_task() for session in self._finishing]
+        self.finish_setup_job = BackgroundSetup(self._finishing[0].gauss_core, tasks)
+        return True
+
+    def finish_tick(self):
+        """One tick of the finish: once the set-up is done, the sessions go on at full resolution and
+        ticks step them. Returns a TickOutcome (stopped: sessions whose finish failed, restored)."""
+        job = self.finish_setup_job
+        if job is not None:
+            if not job.done:
+                return TickOutcome()
+            self.finish_setup_job = None
+            outcome = TickOutcome()
+            for session, result in zip(self._finishing, job.results):
+                try:
+                    if isinstance(result, Exception) or result is None:
+                        raise result or SettingsError("the full-resolution set-up did not finish")
+                    session.finish_on(result)
+                    self._finish_start[session] = session.steps
+                    self.settled.pop(session, None)
+                except SettingsError as exc:
+                    outcome.stopped.append((session, str(exc)))
+            for session, _why in outcome.stopped:
+                self._drop(session)
+                self._finishing.remove(session)
+            return outcome
+        return self.tick()
+
+    @property
+    def finished(self):
+        """Has every finished session converged (or run UNTIL_CONVERGED_CAP full-resolution steps)?"""
+        if not self.finishing or self.finish_setup_job is not None:
+            return False
+        return all(session.at_rest or session.steps - self._finish_start[session] >= UNTIL_CONVERGED_CAP
+                   for session in self._finishing if session in self.sessions)
+
+    def finish_progress(self):
+        """(fraction, text) of the finish for the progress indicator and the status line."""
+        job = self.finish_setup_job
+        if job is not None:
+            return job.fraction, job.text()
+        sessions = [session for session in self._finishing if session in self.sessions]
+        fractions = [1.0 if session.at_rest else (self.settling(session) or 0.0) for session in sessions]
+        steps = max((session.steps - self._finish_start[session] for session in sessions), default=0)
+        return min(fractions, default=1.0), "%s, step %d" % (FINISHING, steps)
 
     # -- running ------------------------------------------------------------------
 
@@ -213,6 +283,9 @@ class LiveRun:
 
     def cancel(self):
         """Restore every object (a set-up still running is stopped: nothing was changed yet)."""
+        if self.finish_setup_job is not None:
+            self.finish_setup_job.cancel()
+            self.finish_setup_job = None
         if self.setup is not None:
             self.setup.cancel()
             self.setup = None
@@ -245,6 +318,9 @@ class LiveRun:
         """One line for the header and the status bar (without the key hints)."""
         if self.preparing:
             return TITLE + ": " + progress_text(self.setup.text(), self.setup.fraction)
+        if self.finishing:
+            fraction, text = self.finish_progress()
+            return TITLE + ": " + progress_text(text, fraction)
         sessions = self.sessions
         if not sessions:
             return TITLE
@@ -274,6 +350,10 @@ class LiveRun:
                 text += "  |  '%s' %s" % (session.name, HELD_BACK % session.solver.held_vertices)
             if self.tick_ms and len(converged) + len(held_back_ones) < len(sessions):
                 text += "  |  %.1f ms/tick" % self.tick_ms[-1]
+        for session in sessions:
+            if session.on_proxy:
+                text += "  |  " + ("'%s' " % session.name if len(sessions) > 1 else "") + PROXY % "{:,}".format(
+                    session.proxy.num_vertices)
         for session, why in self.paused.items():
             text += "  |  " + (("'%s' paused: " % session.name) if len(sessions) > 1 else "paused: ") + why
         held = sum(session.solver.held_vertices for session in sessions if session not in held_back_ones)
@@ -297,6 +377,9 @@ class LiveRun:
         """The sidebar box's first row: "Preparing... 40%", "Stylizing live", "Converged" or "Held back"."""
         if self.preparing:
             return progress_text("Preparing", self.setup.fraction)
+        if self.finishing:
+            fraction, _text = self.finish_progress()
+            return progress_text("Finishing", fraction)
         stopped = [s for s in self.sessions if s in self.converged or held_back(s)]
         if self.sessions and len(stopped) == len(self.sessions):
             return "Held back" if any(held_back(s) for s in stopped) else CONVERGED
@@ -321,6 +404,8 @@ class LiveRun:
                 lines.append(("%s: converged, step %d" % (session.name, session.steps), 'CHECKMARK'))
             else:
                 lines.append(("%s: step %d" % (session.name, session.steps), 'MESH_DATA'))
+                if session.on_proxy:
+                    lines.append((PROXY % "{:,}".format(session.proxy.num_vertices), 'MOD_DECIM'))
                 fraction = self.settling(session)
                 if session.unstable:
                     lines.append((UNSTABLE, 'ERROR'))
@@ -335,6 +420,8 @@ class LiveRun:
         """The keys that act on the run now; the pin hint only where an object has a Pin Group."""
         if self.preparing:
             return (SETUP_HINT,)
+        if self.finishing:
+            return (FINISH_HINT,)
         if bpy.context.mode == 'PAINT_WEIGHT':
             return PAINT_HINTS
         pinned = any(session.object_alive() and session.obj.gauss_stylization.pin_group

@@ -17,8 +17,8 @@ def targets_json(sessions):
     away from where they started, in the order of the Pin Group's vertices; "" if none was."""
     moved = {}
     for session in sessions:
-        targets = np.asarray(session.solver.pin_positions, np.float64)
-        start = session.arrays.coords[np.asarray(session.solver.pinned, np.int64)]
+        targets = session.mesh_pin_targets()  # the mesh's, also where a proxy's pins moved them
+        start = session.arrays.coords[np.asarray(session.fine_pins, np.int64)]
         if len(targets) and not np.array_equal(targets, start):
             moved[session.obj.name] = targets.tolist()
     return json.dumps(moved) if moved else ""

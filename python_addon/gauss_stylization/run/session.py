@@ -26,6 +26,7 @@ from ..settings import paint_curve, schema, styles
 from ..settings.fields import Live, changes
 from ..settings.settings_io import add_slot, apply_dict, to_dict
 from ..settings.validation import check_coordinates, check_object, check_pins, check_settings
+from .proxy_run import ProxyMap, proxy_size
 from .solver_setup import PinsSetup
 
 # A result outside the rest mesh's coordinate range widened by this many mesh sizes is treated
@@ -111,6 +112,14 @@ class Plan:
         self.regions = self.regions_for(settings)
         self.solver_options = {field.name: field.read(settings) for field in schema.SOLVER_SETTERS}
         self.target = target or output.make_target(obj, self.source)
+        self.proxy_target = None  # a live run's proxy size (use_proxy), None: full resolution
+        self.proxy = None         # the ProxyMap build_solver() made for it
+
+    def use_proxy(self):
+        """Solve on a proxy if the mesh is above its Proxy Threshold (live runs only: a scripted run
+        goes through at full resolution at once). True if it will."""
+        self.proxy_target = proxy_size(self.num_vertices, self.applied["proxy_threshold"])
+        return self.proxy_target is not None
 
     def release(self):
         """Remove the source's evaluated mesh copy unless a target adopted it (safe to repeat)."""
@@ -151,9 +160,12 @@ class Plan:
         options = dict(self.solver_options)
         if progress is not None:
             options["progress"] = progress
+        coords, triangles, pins = self.arrays.coords, self.arrays.triangles, self.pins
         try:
-            return self.gauss_core.Solver(self.arrays.coords, self.arrays.triangles,
-                                          pinned=self.pins if len(self.pins) else None, **options)
+            if self.proxy_target is not None:
+                self.proxy = ProxyMap(self.gauss_core, coords, triangles, self.proxy_target)
+                coords, triangles, pins = self.proxy.vertices, self.proxy.triangles, self.proxy.pins(pins)
+            return self.gauss_core.Solver(coords, triangles, pinned=pins if len(pins) else None, **options)
         except self.gauss_core.Cancelled:
             raise
         except (ValueError, TypeError, RuntimeError, MemoryError) as exc:
@@ -222,19 +234,26 @@ class Session:
         self.obj, self.mesh, self.gauss_core = plan.obj, plan.mesh, plan.gauss_core
         self.arrays, self.weights, self.target = plan.arrays, plan.weights, plan.target
         self.applied = plan.applied
+        # A live run above the Proxy Threshold solves on plan.proxy (proxy_run.py) until finish_task()'s
+        # full-resolution solver takes over; the mesh's pinned vertices stay in fine_pins meanwhile.
+        self.proxy = plan.proxy
+        self.fine_pins = plan.pins
         try:
             solver.set_styles(plan.styles)
-            solver.set_face_weights(*plan.regions)
+            solver.set_face_weights(*self._on_solver(plan.regions))
         except (ValueError, TypeError) as exc:
             raise _solver_error(exc) from exc
         self.solver = solver
-        # The solver writes its result straight into this buffer every step.
+        # The solver writes its result straight into this buffer every step (through the proxy's
+        # buffer and its transfer on a proxy): preallocated, so a tick allocates nothing.
         self.result = np.empty_like(self.arrays.coords)
+        self._proxy_result = None if self.proxy is None else np.empty((self.proxy.num_vertices, 3), np.float32)
         # Coordinates beyond these (MAX_EXTENT mesh sizes around the rest mesh) mean a blow-up.
         lower, upper = float(self.arrays.coords.min()), float(self.arrays.coords.max())
         margin = MAX_EXTENT * max(upper - lower, 1e-30)
         self.bounds = (lower - margin, upper + margin)
         self.steps = 0
+        self.finished_on_proxy = False  # finish_on() went on at full resolution after a proxy
         # Every vertex Avoid Self-Intersections has held back in some step of this run (Select Held
         # Faces): the set of one step comes and goes from step to step, where the run is held does not.
         self._ever_held = np.zeros(self.arrays.num_vertices, bool)
@@ -247,10 +266,79 @@ class Session:
         self.pin_changes = 0
         self._mode = self.obj.mode  # the object's mode at the last tick: a return from Weight Paint re-reads weights
         self._pin_group_before = None  # applied["pin_group"] before it
+        self._fine_pins_before = self.fine_pins  # fine_pins before it
         # What Replay needs of this run (recipe_store.py): how it started, and each change at its step.
         self.recipe = {"settings": self.applied, "weights": self._used_weights(self.applied),
                        "output": self.target.kind, "use_modifiers": plan.source.evaluated, "events": []}
         self.target.prepare()  # first change to the object: everything above succeeded
+
+    # -- a proxy ---------------------------------------------------------------
+
+    def _on_solver(self, regions):
+        """Solver.set_face_weights' arguments of the mesh's ``regions`` for the solver that runs."""
+        if self.proxy is None:
+            return regions
+        faces, _vertices = regions
+        return self.proxy.face_weights(self.arrays.triangles, faces), None
+
+    def _pins_on_solver(self, fine_pins):
+        return fine_pins if self.proxy is None else self.proxy.pins(fine_pins)
+
+    @property
+    def solve_coords(self):
+        """(#S, 3) rest positions of the mesh the solver runs on: the proxy's or the whole mesh's."""
+        return self.arrays.coords if self.proxy is None else self.proxy.vertices
+
+    @property
+    def solve_triangles(self):
+        """(#G, 3) triangles of the mesh the solver runs on (what the solver's pin indices refer to)."""
+        return self.arrays.triangles if self.proxy is None else self.proxy.triangles
+
+    @property
+    def on_proxy(self):
+        return self.proxy is not None
+
+    def finish_task(self):
+        """A proxy run's full-resolution solver, to be built on a worker thread: (weight, text, run) for
+        solver_setup.BackgroundSetup; run(progress) returns the solver. Read here, on the main thread:
+        the settings the run has now, the mesh's pins and where the proxy's pins put them."""
+        self._stop_pins()
+        options = {field.name: self.applied[field.name] for field in schema.SOLVER_SETTERS}
+        pins = np.asarray(self.fine_pins, np.int32)
+        targets = self.proxy.fine_pin_targets(pins, self.arrays.coords, self.solver.pinned,
+                                              self.solver.pin_positions, self.proxy.vertices)
+        settings = self.obj.gauss_stylization
+        regions = self.plan.regions_for(settings, self.weights)
+        new_styles = styles.make_styles(self.gauss_core, settings.styles)
+        coords, triangles = self.arrays.coords, self.arrays.triangles
+
+        def build(progress):
+            try:
+                solver = self.gauss_core.Solver(coords, triangles, pinned=pins if len(pins) else None,
+                                                progress=progress, **options)
+            except self.gauss_core.Cancelled:
+                raise
+            except (ValueError, TypeError, RuntimeError, MemoryError) as exc:
+                raise _solver_error(exc) from exc
+            return solver, new_styles, regions, targets
+        return (self.arrays.num_vertices, "Preparing %s vertices at full resolution"
+                % "{:,}".format(self.arrays.num_vertices), build)
+
+    def finish_on(self, built):
+        """Go on at full resolution with ``built`` (finish_task()'s result), warm-started from the
+        shape the proxy's transfer gave the mesh; steps from now on write the mesh directly."""
+        solver, new_styles, regions, targets = built
+        try:
+            solver.set_styles(new_styles)
+            solver.set_face_weights(*regions)
+            solver.set_vertices(self.result)
+            if len(targets):
+                solver.set_pin_positions(targets)
+        except (ValueError, TypeError) as exc:
+            raise _solver_error(exc) from exc
+        self.solver, self.proxy, self._proxy_result = solver, None, None
+        self.pin_changes += 1  # handles of the proxy's pins are stale
+        self.finished_on_proxy = True
 
     # -- running ---------------------------------------------------------------
 
@@ -289,13 +377,21 @@ class Session:
     def move_pins(self, targets):
         """New targets ((#P,3), object space) for the pinned vertices (a handle's drag, a script's pin
         targets), without re-factoring. Raises ValueError if the solver refuses them."""
-        before = np.asarray(self.solver.pin_positions, np.float64)
+        before = self.mesh_pin_targets()
         self.solver.set_pin_positions(targets)
         # Only the rows that moved (a handle moves its part's pins): a long drag stays small in the recipe.
-        now = np.asarray(self.solver.pin_positions, np.float64)
+        now = self.mesh_pin_targets()
         rows = np.flatnonzero((now != before).any(axis=1)) if len(before) == len(now) else np.arange(len(now))
         self.recipe["events"].append({"step": self.steps, "rows": recipe_store.pack(rows, np.int64),
                                       "pins": recipe_store.pack(now[rows], np.float64)})
+
+    def mesh_pin_targets(self):
+        """The pin targets a recipe records: the mesh's (on a proxy: where the proxy's put them), so a
+        run that re-makes it at full resolution (Follow Edits) moves the mesh's pins."""
+        if self.proxy is None:
+            return np.asarray(self.solver.pin_positions, np.float64)
+        return self.proxy.fine_pin_targets(self.fine_pins, self.arrays.coords, self.solver.pinned,
+                                           self.solver.pin_positions, self.proxy.vertices)
 
     def replay_event(self, event):
         """Make a recorded change (recipe_store.py) again, as the run it was recorded in made it."""
@@ -362,9 +458,14 @@ class Session:
 
     def _apply(self, settings, changed):
         calls, pins = solver_changes(self.plan, self.obj, settings, self.applied, changed, self.weights)
+        if self.proxy is not None:  # the mesh's Regions and pins, on the proxy the solver runs
+            calls = [("set_face_weights",) + tuple(self._on_solver(call[1:])) if call[0] == "set_face_weights"
+                     else call for call in calls]
         run_calls(self.solver, calls)
         if pins is None:
             return
+        self._fine_pins_before, self.fine_pins = self.fine_pins, pins
+        pins = self._pins_on_solver(pins)
         self.pin_changes += 1
         if self.background_pins:  # last: the solver is not to be touched until it is done
             self._pin_group_before = self.applied["pin_group"]
@@ -379,6 +480,7 @@ class Session:
         if setup is None or not isinstance(setup.results[0], Exception):
             return None
         self.applied = dict(self.applied, pin_group=self._pin_group_before)
+        self.fine_pins = self._fine_pins_before
         return str(setup.results[0])
 
     def _stop_pins(self):
@@ -447,8 +549,13 @@ class Session:
             self._last_runaway = self.steps
         self._runaways = runaways
         if self.solver.held_vertices:  # the last of the ``count`` steps: a tick steps once
-            self._ever_held[self.solver.held_vertex_indices] = True
-        self.solver.vertices_into(self.result)
+            held = self.solver.held_vertex_indices
+            self._ever_held[held if self.proxy is None else self.proxy.fine[held]] = True
+        if self.proxy is None:
+            self.solver.vertices_into(self.result)
+        else:
+            self.solver.vertices_into(self._proxy_result)
+            self.proxy.proxy.transfer(self._proxy_result, self.result)
         # Never write NaN or a blown-up shape into the artist's mesh: two reductions, which
         # propagate NaN and allocate nothing.
         low, high = self.result.min(), self.result.max()
@@ -480,7 +587,8 @@ class Session:
             follow_store.save(self.target.obj, self.obj, dict(self.recipe, steps=self.steps), self.arrays)
             return
         follow_store.forget(self.obj)  # a copy moved by a run of its own no longer follows its source
-        if self.recipe["use_modifiers"]:
+        # A proxy run's steps and pin moves were the proxy's: a replay at full resolution cannot repeat them.
+        if self.recipe["use_modifiers"] or self.finished_on_proxy or self.proxy is not None:
             recipe_store.save(self.mesh, None)
             return
         start = self.arrays.coords

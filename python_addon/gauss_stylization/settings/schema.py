@@ -225,6 +225,10 @@ OBJECT = (
     Int("iterations", "Script Steps", "Steps run by Stylize when called from a script or in background mode; "
         "0: until converged (Tolerance), at most %d steps" % UNTIL_CONVERGED_CAP,
         default=100, hard=(0, 100000), panel=Panel.SOLVER),
+    Int("proxy_threshold", "Proxy Threshold", "A live run on a mesh with more vertices than this stylizes a "
+        "simplified copy of it (a proxy) that the whole mesh follows at every tick, and Enter finishes the whole "
+        "mesh at full resolution (docs/interactive.md, Sculpt-sized meshes)", default=300000,
+        hard=(100, 2 ** 31 - 1), soft=(10000, 2000000), panel=Panel.SOLVER),
     Bool("keep_volume", "Keep Volume", "After each step scale every closed part of the mesh about its centre "
          "back to its original volume (open parts: to their original area; parts with pinned vertices are "
          "left alone), so the shape does not shrink", live=Live.SETTER, panel=Panel.SOLVER),
