@@ -187,3 +187,17 @@ def test_the_proxy_is_never_bigger_than_the_threshold_or_the_mesh(addon):
     assert size(6172, 2000) == 2000
     assert size(6172, 6172) is None and size(100, 300_000) is None
     assert size(150, 100) == 100
+
+
+def test_a_new_object_kept_from_a_proxy_run_has_no_recipe_to_follow(addon):
+    # Its steps were the proxy's: Follow Edits and Replay at full resolution could not give it back.
+    obj = _bunny(addon)
+    obj.gauss_stylization.output = 'NEW_OBJECT'
+    obj.gauss_stylization.follow_edits = True
+    live = helpers.live_run([obj])
+    _live(live)
+    _finish(live)
+    live.keep()
+    copy = helpers.bpy.data.objects[obj.name + "_stylized"]
+    assert not addon.mesh.follow_store.has(copy)
+    assert "no kept run to replay" in addon.run.replay.problem(copy)

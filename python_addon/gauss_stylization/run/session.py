@@ -583,12 +583,15 @@ class Session:
         its recipe with it; its own recipe goes on the copy (follow_store.py)."""
         if self.steps == 0:
             return
+        # A proxy run's steps and pin moves were the proxy's: a replay at full resolution cannot repeat
+        # them, so it leaves no recipe (a New Object copy of one does not follow its source).
+        on_proxy = self.finished_on_proxy or self.proxy is not None
         if self.target.kind == output.NewObjectTarget.kind:  # on the copy: Follow Edits and Replay re-make it
-            follow_store.save(self.target.obj, self.obj, dict(self.recipe, steps=self.steps), self.arrays)
+            if not on_proxy:
+                follow_store.save(self.target.obj, self.obj, dict(self.recipe, steps=self.steps), self.arrays)
             return
         follow_store.forget(self.obj)  # a copy moved by a run of its own no longer follows its source
-        # A proxy run's steps and pin moves were the proxy's: a replay at full resolution cannot repeat them.
-        if self.recipe["use_modifiers"] or self.finished_on_proxy or self.proxy is not None:
+        if self.recipe["use_modifiers"] or on_proxy:
             recipe_store.save(self.mesh, None)
             return
         start = self.arrays.coords
