@@ -66,6 +66,7 @@ driver windowed_undo_save.py windowed_undo_save_result.txt
 driver windowed_paint_strength.py windowed_paint_strength_result.txt
 driver windowed_self_intersections.py windowed_self_intersections_result.txt
 driver windowed_follow_edits.py windowed_follow_edits_result.txt
+driver windowed_proxy_run.py windowed_proxy_run_result.txt
 
 # Quitting: the preferences live in a folder of their own, never the user's.
 CONFIG=$(mktemp -d)
