@@ -86,8 +86,8 @@ def test_the_panel_shows_cubic_lambda_only_for_cubic(addon):
     rows.clear()
     addon.view.sidebar.draw_rows(layout, obj, obj.gauss_stylization, addon.settings.schema.OBJECT,
                                  addon.settings.fields.Panel.SOLVER)
-    # Lambda and ADMM Iterations are the Gauss method's; Resolution Independent and Square Flat Regions act
-    # on both methods.
-    assert rows == ["tolerance", "iterations", "keep_volume", "avoid_self_intersections", "resolution_independent",
-                    "square_flat_regions"]
+    # Lambda and ADMM Iterations are the Gauss method's; Resolution Independent, Square Flat Regions and
+    # the Proxy Threshold act on both methods.
+    assert rows == ["tolerance", "iterations", "proxy_threshold", "keep_volume", "avoid_self_intersections",
+                    "resolution_independent", "square_flat_regions"]
 
