@@ -166,3 +166,23 @@ def live_run(objects, limit=60.0):
         time.sleep(0.01)
     assert live.finish_setup() == []
     return live
+
+
+def live_run_with_a_repaint(obj, group, weight, ticks_before, ticks_after):
+    """A live run of ``obj`` in which the artist, after ``ticks_before`` ticks, paints every vertex of
+    ``group`` to ``weight`` in Weight Paint mode (the run reads the strokes on the way back to Object
+    Mode), then ``ticks_after`` ticks more. Returns the run, not yet kept."""
+    live = live_run([obj])
+    try:
+        for _ in range(ticks_before):
+            live.tick(budget=1e9)
+        bpy.ops.object.mode_set(mode='WEIGHT_PAINT')
+        obj.vertex_groups[group].add(list(range(len(obj.data.vertices))), weight, 'REPLACE')  # the strokes
+        live.tick(budget=1e9)
+        bpy.ops.object.mode_set(mode='OBJECT')
+        for _ in range(ticks_after):
+            live.tick(budget=1e9)
+    finally:
+        if obj.mode != 'OBJECT':
+            bpy.ops.object.mode_set(mode='OBJECT')
+    return live

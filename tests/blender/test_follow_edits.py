@@ -60,6 +60,17 @@ def _edit_in_edit_mode(source, offset, count):
     bpy.context.view_layer.update()
 
 
+def _subdivide_some_edges(source):
+    """Change the source's topology (its first 40 edges cut in two) and let the depsgraph tell the handlers."""
+    bm = bmesh.new()
+    bm.from_mesh(source.data)
+    bmesh.ops.subdivide_edges(bm, edges=bm.edges[:40], cuts=1, use_grid_fill=True)
+    bm.to_mesh(source.data)
+    bm.free()
+    source.data.update()
+    bpy.context.view_layer.update()
+
+
 def _replayed(copy):
     """What Replay of the copy gives (Follow Edits off meanwhile, so nothing else writes)."""
     was = copy.gauss_stylization.follow_edits
@@ -162,13 +173,7 @@ def test_turning_it_off_stops_following_and_on_catches_up(addon, follow):
 
 def test_a_topology_change_re_runs_from_scratch(addon, follow):
     source, copy = _kept_copy(addon)
-    bm = bmesh.new()
-    bm.from_mesh(source.data)
-    bmesh.ops.subdivide_edges(bm, edges=bm.edges[:40], cuts=1, use_grid_fill=True)
-    bm.to_mesh(source.data)
-    bm.free()
-    source.data.update()
-    bpy.context.view_layer.update()
+    _subdivide_some_edges(source)
     assert follow.settle(60.0)
     assert "from scratch" in follow.status(copy)
     assert len(copy.data.vertices) == len(source.data.vertices)
@@ -323,13 +328,7 @@ def test_an_edit_is_followed_with_the_runs_changes_made_again(addon, follow):
 def test_a_topology_change_makes_the_settings_changes_again_without_the_handle(addon, follow):
     source, targets = _source_with_a_handle()
     copy = _live_changes(source, targets)
-    bm = bmesh.new()
-    bm.from_mesh(source.data)
-    bmesh.ops.subdivide_edges(bm, edges=bm.edges[:40], cuts=1, use_grid_fill=True)
-    bm.to_mesh(source.data)
-    bm.free()
-    source.data.update()
-    bpy.context.view_layer.update()
+    _subdivide_some_edges(source)
     assert follow.settle(60.0)
     status = follow.status(copy)
     assert "from scratch" in status and "handle moves" in status
@@ -346,19 +345,7 @@ def test_a_region_repainted_while_it_ran_is_made_again_bit_for_bit(addon, follow
     source.gauss_stylization.styles[0].vertex_group = "Paint"
     source.gauss_stylization.output = 'NEW_OBJECT'
     source.gauss_stylization.follow_edits = True
-    live = helpers.live_run([source])
-    try:
-        for _ in range(5):
-            live.tick(budget=1e9)
-        bpy.ops.object.mode_set(mode='WEIGHT_PAINT')
-        source.vertex_groups["Paint"].add(list(range(len(rest))), 0.9, 'REPLACE')  # the strokes
-        live.tick(budget=1e9)
-        bpy.ops.object.mode_set(mode='OBJECT')
-        for _ in range(8):
-            live.tick(budget=1e9)
-    finally:
-        if source.mode != 'OBJECT':
-            bpy.ops.object.mode_set(mode='OBJECT')
+    live = helpers.live_run_with_a_repaint(source, "Paint", 0.9, ticks_before=5, ticks_after=8)
     live.keep()
     copy = bpy.data.objects[source.name + "_stylized"]
     kept = helpers.coords(copy)

@@ -137,19 +137,7 @@ def test_a_region_repainted_mid_run_replays_bit_for_bit(addon):
     rest = helpers.coords(obj)
     helpers.add_group(obj, "Paint", np.flatnonzero(rest[:, 2] > 0.0), weight=0.3)
     obj.gauss_stylization.styles[0].vertex_group = "Paint"
-    live = helpers.live_run([obj])
-    try:
-        for _ in range(6):
-            live.tick(budget=1e9)
-        bpy.ops.object.mode_set(mode='WEIGHT_PAINT')
-        obj.vertex_groups["Paint"].add(list(range(len(rest))), 0.9, 'REPLACE')  # the strokes
-        live.tick(budget=1e9)
-        bpy.ops.object.mode_set(mode='OBJECT')
-        for _ in range(10):
-            live.tick(budget=1e9)
-    finally:
-        if obj.mode != 'OBJECT':
-            bpy.ops.object.mode_set(mode='OBJECT')
+    live = helpers.live_run_with_a_repaint(obj, "Paint", 0.9, ticks_before=6, ticks_after=10)
     live.keep()
     kept = helpers.coords(obj)
     events = addon.run.replay.recipe(obj)["runs"][0]["events"]
