@@ -188,6 +188,36 @@ TEST(SelfIntersections, TheGuardOffIsTheSolverAsBefore) {
   EXPECT_EQ(a, b);
 }
 
+TEST(SelfIntersections, AStagedMoveWithNothingToHoldIsTheStepExactly) {
+  // A long move is checked in stages (kStageMove); their sum is the move only up to rounding, so a
+  // guard that holds nothing must still hand back the step's own coordinates, bit for bit.
+  const gauss::TriangleMesh m = gauss_test::icosphere(2);
+  const std::vector<std::array<int, 3>> faces = faces_of(m);
+  const std::vector<Vector3d> safe = points_of(m.V);
+  const gauss::MeshTopology topo = gauss::build_mesh_topology(m.num_vertices(), m.F.data(), m.num_faces());
+  gauss::SelfIntersectionGuard guard(topo, safe);
+  guard.start_from(safe);
+  std::vector<Vector3d> X(safe.size());
+  for (size_t v = 0; v < X.size(); ++v)  // a sphere grown by an odd factor and turned: no contact anywhere
+    X[v] = Eigen::AngleAxisd(0.3, Vector3d(1, 2, 3).normalized()) * (1.3719 * safe[v]) + Vector3d(0.0123, -0.071, 0.29);
+  const std::vector<Vector3d> step = X;
+  EXPECT_EQ(guard.limit(safe, X), 0);
+  bool exact = true;
+  for (size_t v = 0; v < X.size(); ++v) exact = exact && X[v] == step[v];
+  EXPECT_TRUE(exact) << "a vertex never held moved by the stages' rounding";
+}
+
+TEST(SelfIntersections, TheGuardHoldingNothingIsTheSolverAsBefore) {
+  // On a mesh the style never folds into itself, the guard on is the plain run bit for bit: whether a
+  // run is guarded must not change a result it never had to hold back.
+  const gauss::TriangleMesh m = gauss_test::icosphere(3);
+  int held = 0;
+  const std::vector<double> plain = stylize(m, false, 40);
+  const std::vector<double> guarded = stylize(m, true, 40, &held);
+  EXPECT_EQ(held, 0) << "the case is for a guard with nothing to hold";
+  EXPECT_EQ(plain, guarded);
+}
+
 TEST(SelfIntersections, PinsDraggedIntoTheMeshStopShort) {
   // The first plate's vertices pinned and dragged in one move 0.2 down and turned by 20 degrees, into
   // the second plate laid flat 0.2 under it (the guard checks so long a move in stages).

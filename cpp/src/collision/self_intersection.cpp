@@ -268,11 +268,18 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
     stage_start_.resize(nV);
     ever_held_.assign(nV, 0);
   }
+  whole_ = X;
   for (int v = 0; v < nV; ++v) move_[v] = (X[v] - safe[v]) / stages;
   stage_start_ = safe;
   held_in_any_.clear();
   for (int stage = 0; stage < stages; ++stage) {
-    for (int v = 0; v < nV; ++v) X[v] = stage_start_[v] + move_[v];
+    // The sum of the stages' moves is the step only up to rounding: the last stage aims at the step's
+    // own result, so that a vertex never held ends exactly where it would without the guard.
+    if (stage + 1 < stages) {
+      for (int v = 0; v < nV; ++v) X[v] = stage_start_[v] + move_[v];
+    } else {
+      for (int v = 0; v < nV; ++v) X[v] = ever_held_[v] ? stage_start_[v] + move_[v] : whole_[v];
+    }
     limit_stage(stage_start_, X);
     for (int v : held_)
       if (!ever_held_[v]) ever_held_[v] = 1, held_in_any_.push_back(v);
@@ -282,7 +289,7 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
   denied_ = 0;
   for (int v : held_in_any_) {
     ever_held_[v] = 0;
-    denied_ = std::max(denied_, (safe[v] + stages * move_[v] - X[v]).cwiseAbs().maxCoeff());
+    denied_ = std::max(denied_, (whole_[v] - X[v]).cwiseAbs().maxCoeff());
   }
   last_held_ = static_cast<int>(held_in_any_.size());
   last_staged_ = true;

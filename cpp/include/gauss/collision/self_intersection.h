@@ -134,6 +134,7 @@ class SelfIntersectionGuard {
   std::vector<uint64_t> merged_;          // take_slid_pairs()'s output before it is swapped in
   std::vector<Eigen::Vector3d> move_;     // #V: a staged move's whole displacement
   std::vector<Eigen::Vector3d> stage_start_;  // #V
+  std::vector<Eigen::Vector3d> whole_;    // #V: a staged limit()'s input, the step's own result
   std::vector<uint8_t> ever_held_;        // #V: held in some stage of the current limit()
   std::vector<Eigen::Vector3d> candidate_;  // #V: the step's result before limit()
   std::vector<Eigen::Vector3d> aim_;      // #V: where a held vertex goes now, its candidate slid
