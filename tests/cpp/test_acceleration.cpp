@@ -15,6 +15,10 @@
 #include "gauss/settings.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_acceleration {
+
 using gauss::GaussSolver;
 
 namespace {
@@ -197,3 +201,5 @@ TEST(Acceleration, OffIsThePlainIterationAndResetDropsTheMomentum) {
     EXPECT_EQ(vertices(switched), vertices(plain));
   }
 }
+
+}  // namespace test_acceleration

@@ -7,6 +7,10 @@
 #include "test_expect.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_bad_input {
+
 using gauss::GaussSolver;
 
 using gauss_test::expect_refused;
@@ -52,3 +56,5 @@ TEST(BadInput, EveryProblemHasItsOwnMessage) {
   s.copy_vertices(out.data());
   for (double x : out) EXPECT_TRUE(std::isfinite(x));
 }
+
+}  // namespace test_bad_input

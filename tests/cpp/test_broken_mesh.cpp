@@ -19,6 +19,10 @@
 #include "robustness_kit.h"
 #include "test_expect.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_broken_mesh {
+
 namespace {
 
 using namespace robustness_kit;
@@ -378,3 +382,5 @@ TEST(BrokenMesh, PinsAndFaceStylesOnBrokenMeshes) {
 }
 
 }  // namespace
+
+}  // namespace test_broken_mesh

@@ -19,6 +19,10 @@
 #include "scoped_env.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_cholesky_solver {
+
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
@@ -300,3 +304,5 @@ TEST(CholeskySolver, CancelStopsTheFactorizationPromptlyAndKeepsThePreviousFacto
   }
   expect_matches_eigen(small, s, 1e-12);
 }
+
+}  // namespace test_cholesky_solver

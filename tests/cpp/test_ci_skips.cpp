@@ -12,6 +12,10 @@
 #include <sstream>
 #include <string>
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_ci_skips {
+
 namespace {
 
 bool in_ci() {
@@ -90,3 +94,5 @@ TEST(CiSkips, ASkipUnderCiFailsWithItsReasonAndIsASkipOtherwise) {
   std::remove(log.c_str());
 #endif  // elsewhere (the Windows run under wine) the listener is in place, and cross_check.sh reads the skips too
 }
+
+}  // namespace test_ci_skips

@@ -5,6 +5,10 @@
 
 #include "gauss/solver/closest_rotation.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_closest_rotation {
+
 using Eigen::Matrix3d;
 
 namespace {
@@ -63,3 +67,5 @@ TEST(ClosestRotation, WarmStartFollowsASlowlyTurningFrame) {
     EXPECT_LT((got - R).cwiseAbs().maxCoeff(), 1e-9) << i;
   }
 }
+
+}  // namespace test_closest_rotation

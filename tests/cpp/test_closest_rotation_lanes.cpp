@@ -8,6 +8,10 @@
 
 #include "gauss/solver/closest_rotation.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_closest_rotation_lanes {
+
 namespace {
 
 using Eigen::Matrix3d;
@@ -81,3 +85,5 @@ TEST(ClosestRotationWarm, TwoLanesGiveTheBitsOfOneEach) {
 }
 
 }  // namespace
+
+}  // namespace test_closest_rotation_lanes

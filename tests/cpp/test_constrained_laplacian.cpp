@@ -14,6 +14,10 @@
 #include "test_expect.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_constrained_laplacian {
+
 using gauss::ConstrainedLaplacian;
 using gauss::GaussSolver;
 using Eigen::Vector3d;
@@ -236,3 +240,5 @@ TEST(GaussSolverPins, BadTargetsAreRefusedAndChangeNothing) {
   unpinned.set_pin_positions(nullptr, 0);
   EXPECT_THROW(unpinned.set_pin_positions(p.moved.data(), 1), std::invalid_argument);
 }
+
+}  // namespace test_constrained_laplacian

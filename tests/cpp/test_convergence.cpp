@@ -13,6 +13,10 @@
 #include "test_expect.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_convergence {
+
 using Eigen::Vector3d;
 using gauss::GaussSolver;
 
@@ -133,3 +137,5 @@ TEST(StepUntil, ACubeUnderTheCubeStyleConvergesAtOnce) {
   GaussSolver s(cube.V.data(), cube.num_vertices(), cube.F.data(), cube.num_faces());
   EXPECT_EQ(s.step_until(gauss::settings::tolerance.min, 100), 1);
 }
+
+}  // namespace test_convergence

@@ -15,6 +15,10 @@
 #include "test_expect.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_cubic {
+
 namespace {
 
 using Eigen::Matrix3d;
@@ -235,3 +239,5 @@ TEST(Cubic, BadSettingsAreRefusedAndChangeNothing) {
 }
 
 }  // namespace
+
+}  // namespace test_cubic

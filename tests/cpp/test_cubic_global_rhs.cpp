@@ -12,6 +12,10 @@
 #include "gauss/solver/cubic_local_step.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_cubic_global_rhs {
+
 namespace {
 
 using Eigen::Matrix3d;
@@ -74,3 +78,5 @@ TEST(CubicGlobalRhs, UnreferencedVertexGetsZero) {
 }
 
 }  // namespace
+
+}  // namespace test_cubic_global_rhs

@@ -15,6 +15,10 @@
 #include "gauss/util/parallel.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_cubic_local_step {
+
 namespace {
 
 using Eigen::Matrix3d;
@@ -163,3 +167,5 @@ TEST(CubicLocalStep, ResetRestartsAndThreadCountDoesNotMatter) {
   for (size_t v = 0; v < s.rest.size(); ++v)
     ASSERT_EQ(std::memcmp(r1.rotation[v].data(), again.rotation[v].data(), sizeof(Matrix3d)), 0) << "vertex " << v;
 }
+
+}  // namespace test_cubic_local_step

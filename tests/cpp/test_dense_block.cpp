@@ -13,6 +13,10 @@
 #include "gauss/sparse/dense_block.h"
 #include "gauss/util/parallel.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_dense_block {
+
 namespace {
 
 using Dense = Eigen::MatrixXd;
@@ -91,3 +95,5 @@ TEST(DenseBlock, RefusesIndefiniteNonFiniteAndCancelled) {
   Dense B = random_block(300, 300, 3);
   EXPECT_FALSE(gauss::factor_block(B.data(), 300, 300, false, cancelled));
 }
+
+}  // namespace test_dense_block

@@ -15,6 +15,10 @@
 #include "test_expect.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_face_weights {
+
 namespace {
 
 using Eigen::Matrix3d;
@@ -216,3 +220,5 @@ TEST(FaceWeights, BadWeightsAreRefusedAndChangeNothing) {
 }
 
 }  // namespace
+
+}  // namespace test_face_weights

@@ -23,6 +23,10 @@
 #include "gauss/sparse/nested_dissection.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_fill_nested_dissection {
+
 namespace {
 
 // nested_dissection.h: graphs up to this size are ordered by AMD alone.
@@ -145,3 +149,5 @@ void expect_sparser_than_amd(const char* rel) {
 }
 
 TEST(NestedDissectionFill, SubdividedBunnyIsSparserThanAmd) { expect_sparser_than_amd("bunny/bunny_watertight_34834.obj"); }
+
+}  // namespace test_fill_nested_dissection

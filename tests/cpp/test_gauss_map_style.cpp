@@ -14,6 +14,10 @@
 #include "gauss/style/presets.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_gauss_map_style {
+
 namespace {
 
 using Eigen::Vector3d;
@@ -127,3 +131,5 @@ TEST(GaussMapStyle, ACubesGaussMapStylizesAsTheCubeStyle) {
 }
 
 }  // namespace
+
+}  // namespace test_gauss_map_style

@@ -22,6 +22,10 @@
 #include "gauss/settings.h"
 #include "test_directions.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_many_normals {
+
 namespace {
 
 using Eigen::Vector3d;
@@ -255,3 +259,5 @@ TEST(NormalField, TooManyNormalsAreRefusedWithAMessage) {
 }
 
 }  // namespace
+
+}  // namespace test_many_normals

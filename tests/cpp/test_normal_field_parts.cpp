@@ -14,6 +14,10 @@
 #include "gauss/style/sphere_lattice.h"
 #include "test_directions.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_normal_field_parts {
+
 namespace {
 
 using Eigen::Vector3d;
@@ -122,3 +126,5 @@ TEST(KernelSystem, SolvesTheRegularizedSystemLikeADenseSolver) {
 }
 
 }  // namespace
+
+}  // namespace test_normal_field_parts

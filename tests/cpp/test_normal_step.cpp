@@ -11,6 +11,10 @@
 #include "gauss/style/presets.h"
 #include "gauss/settings.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_normal_step {
+
 using gauss::newton_normal;
 using gauss::PreferenceFunction;
 using gauss::solve_symmetric3;
@@ -236,3 +240,5 @@ TEST(NewtonNormal, AlwaysReturnsAUnitVector) {
     ASSERT_NEAR(m.norm(), 1.0, 1e-14);
   }
 }
+
+}  // namespace test_normal_step

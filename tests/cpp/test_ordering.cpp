@@ -12,6 +12,10 @@
 #include "gauss/sparse/nested_dissection.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_ordering {
+
 namespace {
 
 // Lower triangle (pattern) of a random symmetric matrix with a full diagonal.
@@ -122,3 +126,5 @@ TEST(NestedDissection, IsAPermutationAndIsDeterministic) {
   for (int i = 0; i < g.n; ++i) ASSERT_EQ(sorted[i], i);
   EXPECT_EQ(gauss::nested_dissection(g.n, g.start, g.adj, progress), order);
 }
+
+}  // namespace test_ordering

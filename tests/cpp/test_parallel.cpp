@@ -16,6 +16,10 @@
 
 #include "gauss/util/parallel.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_parallel {
+
 namespace {
 
 // Raises the pool's default for one test (so that 4 and 8 threads are real on a 2-core machine) and
@@ -219,3 +223,5 @@ TEST(Parallel, AnExceptionInAnyChunkReachesTheCallerAndThePoolStaysUsable) {
   EXPECT_THROW(gauss::parallel::for_tasks(4, true, [](int t) { throw std::out_of_range(std::to_string(t)); }),
                std::out_of_range);
 }
+
+}  // namespace test_parallel

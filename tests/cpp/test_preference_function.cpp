@@ -6,6 +6,10 @@
 #include "gauss/style/preference_function.h"
 #include "gauss/style/presets.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_preference_function {
+
 using gauss::PreferenceFunction;
 using gauss::preset_names;
 using gauss::preset_style;
@@ -172,3 +176,5 @@ TEST(PreferenceFunction, RejectsNonsense) {
   q = preset_style("cone"); q.ring_offsets = {1.5}; expect_error(q, "ring offsets");
   q = preset_style("cone"); q.axis = Vector3d::Zero(); expect_error(q, "axis");
 }
+
+}  // namespace test_preference_function

@@ -9,6 +9,10 @@
 
 #include "gauss/util/progress.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_progress {
+
 namespace {
 
 using gauss::SetupPhase;
@@ -119,3 +123,5 @@ TEST(Progress, WorkersReportFromManyThreadsAndTheFractionOnlyGrows) {
   progress.enter(SetupPhase::symbolic);
   EXPECT_DOUBLE_EQ(reached, progress.fraction());
 }
+
+}  // namespace test_progress

@@ -14,6 +14,10 @@
 #include "gauss/util/parallel.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_proxy {
+
 namespace {
 
 using Eigen::Vector3d;
@@ -233,3 +237,5 @@ TEST(ProxyTransfer, InconsistentMapIsRefused) {
   p.fine_face[3] = static_cast<int>(p.faces.size());
   EXPECT_THROW(gauss::proxy_transfer_precomputation(p), std::invalid_argument);
 }
+
+}  // namespace test_proxy

@@ -12,6 +12,10 @@
 #include "gauss/solver/gauss_solver.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_resolution_independent {
+
 using gauss::GaussSolver;
 
 namespace {
@@ -70,3 +74,5 @@ TEST(ResolutionIndependent, SwitchedOnAndOffBeforeAStepLeavesThePlainRunBitForBi
   s.copy_vertices(out.data());
   EXPECT_EQ(largest_difference(out, run(m, false, -1)), 0.0);
 }
+
+}  // namespace test_resolution_independent

@@ -28,6 +28,10 @@
 #include "robustness_kit.h"
 #include "test_expect.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_robustness {
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -208,3 +212,5 @@ TEST(FuzzInputs, CorpusAndRegressionsReplay) {
 }
 
 }  // namespace
+
+}  // namespace test_robustness

@@ -15,6 +15,10 @@
 #include "gauss/style/presets.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_runaway {
+
 namespace {
 
 using Mesh = gauss::TriangleMesh;
@@ -104,3 +108,5 @@ TEST(Runaway, SharedMeshesNeverTakeTheFallback) {
 }
 
 }  // namespace
+
+}  // namespace test_runaway

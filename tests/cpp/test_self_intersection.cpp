@@ -12,6 +12,10 @@
 #include "gauss/style/presets.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_self_intersection {
+
 using Eigen::Vector3d;
 using gauss::GaussSolver;
 using gauss_test::faces_of;
@@ -261,3 +265,5 @@ TEST(SelfIntersections, CleanMeshesThatAStrongStyleFoldsStayClean) {
   s.copy_vertices(out.data());
   EXPECT_EQ(gauss::count_self_intersections(faces, points_of(out)), 0);
 }
+
+}  // namespace test_self_intersection

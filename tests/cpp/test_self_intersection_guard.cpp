@@ -12,6 +12,10 @@
 #include "gauss/util/parallel.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_self_intersection_guard {
+
 using Eigen::Vector3d;
 using gauss::GaussSolver;
 using gauss_test::faces_of;
@@ -161,3 +165,5 @@ TEST(SelfIntersectionGuard, OneAndTwoThreadsAreBitIdentical) {
   EXPECT_EQ(held[0], held[1]);
   for (size_t i = 0; i < result[0].size(); ++i) ASSERT_EQ(result[0][i], result[1][i]) << i;
 }
+
+}  // namespace test_self_intersection_guard

@@ -22,6 +22,10 @@
 #include "gauss/util/parallel.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_self_intersection_shortcuts {
+
 using Eigen::Vector3d;
 using gauss::Triangle;
 
@@ -580,3 +584,5 @@ TEST(SelfIntersectionShortcuts, OneAndTwoThreadsAreBitIdentical) {
   EXPECT_EQ(held[0], held[1]);
   for (size_t v = 0; v < C.size(); ++v) ASSERT_TRUE(result[0][v] == result[1][v]) << v;
 }
+
+}  // namespace test_self_intersection_shortcuts

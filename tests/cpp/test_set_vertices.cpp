@@ -9,6 +9,10 @@
 #include "test_expect.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_set_vertices {
+
 using gauss::GaussSolver;
 
 namespace {
@@ -110,3 +114,5 @@ TEST(SetVertices, BadVerticesAreRefusedWithoutEffect) {
   EXPECT_EQ(vertices(s), before);
   EXPECT_LT(s.last_reldv(), INFINITY);  // not even the convergence state changed
 }
+
+}  // namespace test_set_vertices

@@ -12,6 +12,10 @@
 #include "test_expect.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_settings {
+
 using gauss::GaussSolver;
 using gauss::PreferenceFunction;
 using gauss::Setting;
@@ -104,3 +108,5 @@ TEST(Presets, TheDefaultStyleIsTheDefaultPreset) {
   explicit_.copy_vertices(b.data());
   EXPECT_EQ(a, b);
 }
+
+}  // namespace test_settings

@@ -19,6 +19,10 @@
 #include "gauss/style/presets.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_sheet_metal {
+
 namespace {
 
 const double kPi = 3.14159265358979323846;
@@ -121,3 +125,5 @@ TEST(SheetMetal, UnbendsSpot) {
   EXPECT_LT(r.developability_out, r.developability_in / 10) << r.developability_in << " -> " << r.developability_out;
   EXPECT_GT(r.flat_out, 1.8 * r.flat_in) << r.flat_in << " -> " << r.flat_out;
 }
+
+}  // namespace test_sheet_metal

@@ -18,6 +18,10 @@
 #include "gauss/style/presets.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_slivers {
+
 namespace {
 
 using Eigen::Vector3d;
@@ -194,3 +198,5 @@ TEST(Slivers, WellShapedSharedMeshesKeepTheirCotangentWeights) {
 }
 
 }  // namespace
+
+}  // namespace test_slivers

@@ -10,6 +10,10 @@
 #include "gauss/style/presets.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_solver {
+
 using gauss::GaussSolver;
 using gauss::PreferenceFunction;
 using gauss::TriangleMesh;
@@ -313,3 +317,5 @@ TEST(GaussSolver, UnstyledFacesKeepTheShape) {
   EXPECT_LT(max_distance(out, sphere.V), 1e-9);
   EXPECT_EQ(s.g_energy(), 0.0);
 }
+
+}  // namespace test_solver

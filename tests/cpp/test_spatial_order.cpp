@@ -12,6 +12,10 @@
 
 #include "gauss/mesh/spatial_order.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_spatial_order {
+
 namespace {
 
 bool is_permutation(const std::vector<int>& p, int n) {
@@ -103,3 +107,5 @@ TEST(SpatialOrder, DegeneratePositionsStillGivePermutations) {
   EXPECT_TRUE(is_permutation(new_of_old, n));
   EXPECT_TRUE(is_permutation(face_order, 60));
 }
+
+}  // namespace test_spatial_order

@@ -12,6 +12,10 @@
 #include "gauss/style/presets.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_square_flat_regions {
+
 using gauss::GaussSolver;
 
 namespace {
@@ -142,3 +146,5 @@ TEST(SquareFlatRegions, FollowsTheFacesStrength) {
   for (size_t i = 0; i < x.size(); ++i) d = std::max(d, std::abs(x[i] - y[i]));
   EXPECT_LT(d, 1e-12);
 }
+
+}  // namespace test_square_flat_regions

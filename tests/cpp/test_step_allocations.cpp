@@ -35,6 +35,10 @@ void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
+// The replacements above must stay global; the tests, like every test file's, are in a namespace of
+// their own (a unity build compiles several files in one translation unit).
+namespace test_step_allocations {
+
 TEST(StepAllocations, StepsDoNotAllocate) {
   // Large enough for the parallel paths (more than 4096 faces), with pins (on one of two components:
   // Keep Volume scales the other), two styles (one with rings), an unstyled face and several ADMM
@@ -161,3 +165,5 @@ TEST(StepAllocations, ProxyTransferDoesNotAllocate) {
   }
   EXPECT_EQ(g_allocations.load() - before, 0);
 }
+
+}  // namespace test_step_allocations

@@ -15,6 +15,10 @@
 #include "gauss/sparse/supernodal_factor.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_supernodal {
+
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
@@ -267,3 +271,5 @@ TEST(SupernodalFactor, NotPositiveDefiniteThrows) {
   progress.start(gauss::SetupPhase::factorizing);
   EXPECT_THROW(gauss::factor_supernodal(S, progress), std::runtime_error);
 }
+
+}  // namespace test_supernodal

@@ -12,6 +12,10 @@
 #include "gauss/util/system_memory.h"
 #include "scoped_env.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_system_memory {
+
 namespace {
 
 constexpr int64_t kMiB = int64_t{1} << 20;
@@ -69,3 +73,5 @@ TEST(MemoryBudget, EnvironmentBudgetThatIsNotANumberIsIgnored) {
     EXPECT_LE(available, total);
   }
 }
+
+}  // namespace test_system_memory

@@ -11,6 +11,10 @@
 #include "gauss/solver/volume_keeper.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_volume_keeper {
+
 using Eigen::Vector3d;
 using gauss::GaussSolver;
 using gauss::TriangleMesh;
@@ -128,3 +132,5 @@ TEST(KeepVolume, ATurnOnOrOffIsAnEditAndACubeStaysACube) {
   s.set_keep_volume(false);
   EXPECT_FALSE(s.converged());
 }
+
+}  // namespace test_volume_keeper

@@ -1,4 +1,5 @@
 #include "gauss/collision/face_bvh.h"
+#include "gauss/util/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,10 +10,6 @@
 namespace gauss {
 
 using Eigen::Vector3d;
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}  // namespace
 
 FaceBvh::FaceBvh(const std::vector<std::array<int, 3>>& faces, const std::vector<Vector3d>& X0)
     : faces_(&faces), order_(faces.size()), face_box_(faces.size()), face_area_(faces.size()) {

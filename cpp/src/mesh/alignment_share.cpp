@@ -1,4 +1,5 @@
 #include "gauss/mesh/alignment_share.h"
+#include "gauss/util/constants.h"
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -7,7 +8,7 @@ namespace gauss {
 
 double alignment_share(const double* V, const int64_t* F, int num_faces,
                        const std::vector<Eigen::Vector3d>& normals, double max_degrees) {
-  const double cos_max = std::cos(max_degrees * 3.14159265358979323846 / 180.0);
+  const double cos_max = std::cos(max_degrees * kPi / 180.0);
   double aligned = 0, total = 0;
   for (int f = 0; f < num_faces; ++f) {
     const Eigen::Vector3d a(V + 3 * F[3 * f]), b(V + 3 * F[3 * f + 1]), c(V + 3 * F[3 * f + 2]);

@@ -1,4 +1,5 @@
 #include "gauss/mesh/flat_vertex_share.h"
+#include "gauss/util/constants.h"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -10,7 +11,7 @@
 namespace gauss {
 
 double flat_vertex_share(const double* V, int num_vertices, const int64_t* F, int num_faces, double max_defect) {
-  const double kTwoPi = 2.0 * 3.14159265358979323846;
+  const double kTwoPi = 2.0 * kPi;
   std::vector<double> angle_sum(num_vertices, 0.0);
   std::vector<char> used(num_vertices, 0), boundary(num_vertices, 0);
   std::vector<std::pair<int64_t, int64_t>> edges;  // undirected, one per face side

@@ -1,4 +1,5 @@
 #include "gauss/mesh/squareness.h"
+#include "gauss/util/constants.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -8,7 +9,6 @@
 namespace gauss {
 
 double squareness(const double* V, const int64_t* F, int num_faces, const Eigen::Vector3d& up, double degrees) {
-  constexpr double kPi = 3.14159265358979323846;
   const double cos_limit = std::cos(degrees * kPi / 180.0);
   const Eigen::Vector3d a = std::abs(up.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   const Eigen::Vector3d e1 = (a - a.dot(up) * up).normalized(), e2 = up.cross(e1);

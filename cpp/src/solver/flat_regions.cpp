@@ -1,4 +1,5 @@
 #include "gauss/solver/flat_regions.h"
+#include "gauss/util/constants.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -14,7 +15,6 @@ namespace {
 
 using Eigen::Vector3d;
 
-constexpr double kPi = 3.14159265358979323846;
 // The axes' search: rectangles every kAngleStep degrees over a quarter turn; rectangles within
 // kTieShare of the smallest's area count as equally small (a 32-gon's differ by 0.5%).
 constexpr double kAngleStep = 0.25;

@@ -1,4 +1,5 @@
 #include "gauss/style/direction_merge.h"
+#include "gauss/util/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -49,7 +50,7 @@ MergedDirections merge_directions(const std::vector<Vector3d>& D, const std::vec
 
 MergedDirections merge_directions(const std::vector<Vector3d>& D, const std::vector<double>& weights,
                                   const std::vector<int>& subset, double max_angle) {
-  if (!(max_angle >= 0.0 && max_angle <= M_PI / 2))
+  if (!(max_angle >= 0.0 && max_angle <= kPi / 2))
     throw std::invalid_argument("the merge angle must lie between 0 and 90 degrees");
   if (!weights.empty() && weights.size() != D.size())
     throw std::invalid_argument("merge weights must have one entry per direction");

@@ -1,4 +1,5 @@
 #include "gauss/style/normal_field.h"
+#include "gauss/util/constants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,7 +17,7 @@ namespace {
 
 using Eigen::Vector3d;
 
-constexpr int kParallelMin = 1024;
+constexpr int kNodesParallelMin = 1024;
 // CG stops when every node's residual 1 - ((A + ridge I) w)_i is below this: a fifth of the
 // refinement target, as a tighter one costs iterations without moving the errors at the normals
 // (measured: docs/performance.md#figures-behind-the-codes-choices).
@@ -46,7 +47,7 @@ void sort_by_cell(const NodeGrid& grid, std::vector<Vector3d>& nodes) {
 std::vector<std::vector<int>> lattice_patches(const SphereLattice& lattice, const std::vector<Vector3d>& nodes) {
   const int M = static_cast<int>(nodes.size());
   std::vector<int> home(M);
-  parallel::for_each(M, kParallelMin, [&](int j) { home[j] = lattice.nearest(nodes[j]); });
+  parallel::for_each(M, kNodesParallelMin, [&](int j) { home[j] = lattice.nearest(nodes[j]); });
   std::vector<std::vector<int>> members(lattice.size());
   for (int j = 0; j < M; ++j) members[home[j]].push_back(j);
   std::vector<std::vector<int>> patches;
@@ -81,7 +82,7 @@ NormalField::NormalField(const std::vector<Vector3d>& normals, double sigma, dou
   // 1-2. The lattice, where the normals fall on it, and the nodes.
   const SphereLattice lattice(SphereLattice::frequency_for_spacing(kLatticeSpacing * width));
   std::vector<int> cell(K);
-  parallel::for_each(K, kParallelMin, [&](int k) { cell[k] = lattice.nearest(normals[k]); });
+  parallel::for_each(K, kNodesParallelMin, [&](int k) { cell[k] = lattice.nearest(normals[k]); });
   std::vector<Vector3d> nodes = choose_nodes(normals, cell, lattice, width);
   std::vector<double> w(nodes.size(), 0.0);
 
@@ -104,7 +105,7 @@ NormalField::NormalField(const std::vector<Vector3d>& normals, double sigma, dou
   std::stable_sort(by_cell.begin(), by_cell.end(), [&](int a, int b) { return input_cell[a] < input_cell[b]; });
   std::vector<char> changed;  // per grid cell: its g moved
   for (int round = 0;; ++round) {
-    parallel::for_each(K, kParallelMin, [&](int i) {
+    parallel::for_each(K, kNodesParallelMin, [&](int i) {
       const int k = by_cell[i];
       if (round == 0)
         g_at[k] = value(normals[k]);
@@ -210,7 +211,7 @@ std::vector<char> NormalField::resolve_around(const std::vector<Vector3d>& nodes
   //   (A_RR + ridge I) w_R = 1 - A_R,rest w_rest.
   const int M = static_cast<int>(nodes.size());
   std::vector<char> in_region(M, 0);
-  const double region_dot = std::cos(std::min(kRefineRadius * width, M_PI));
+  const double region_dot = std::cos(std::min(kRefineRadius * width, kPi));
   for (int q = static_cast<int>(first_new); q < M; ++q) {
     const int c = grid_.cell(nodes[q]);
     for (const int* j = grid_.begin(c); j != grid_.end(c); ++j)
@@ -224,7 +225,7 @@ std::vector<char> NormalField::resolve_around(const std::vector<Vector3d>& nodes
   std::vector<Vector3d> sub(R);
   std::vector<double> sub_w(R), rhs(R);
   for (int i = 0; i < R; ++i) sub[i] = nodes[region[i]], sub_w[i] = w[region[i]];
-  parallel::for_each(R, kParallelMin, [&](int i) {
+  parallel::for_each(R, kNodesParallelMin, [&](int i) {
     const Vector3d& m = sub[i];
     const int c = grid_.cell(m);
     double held = 0;
@@ -261,17 +262,17 @@ void NormalField::set_nodes(const std::vector<Vector3d>& nodes, const std::vecto
 // the candidates within reach first, then the exponentials back to back, then the sums. No library
 // call in the first loop, so that the compiler keeps x and the sums in registers.
 namespace {
-constexpr int kChunk = 64;
+constexpr int kReachChunk = 64;
 }
 
 void NormalField::accumulate(const Vector3d& x, double sums[10]) const {
   const int cell = grid_.cell(x);
-  int index[kChunk];
-  double e[kChunk];
+  int index[kReachChunk];
+  double e[kReachChunk];
   double v = 0, g0 = 0, g1 = 0, g2 = 0, h00 = 0, h01 = 0, h02 = 0, h11 = 0, h12 = 0, h22 = 0;
   for (const int *j = grid_.begin(cell), *end = grid_.end(cell); j != end;) {
     int m = 0;
-    for (const int* stop = j + std::min<std::ptrdiff_t>(kChunk, end - j); j != stop; ++j) {
+    for (const int* stop = j + std::min<std::ptrdiff_t>(kReachChunk, end - j); j != stop; ++j) {
       const std::array<double, 4>& p = points_[*j];
       const double d = x.x() * p[0] + x.y() * p[1] + x.z() * p[2];
       index[m] = *j;
@@ -322,11 +323,11 @@ double NormalField::change(const Vector3d& x, const std::vector<double>& delta) 
 double NormalField::value(const Vector3d& x) const {
   // g alone (the set-up's check at every input normal): one exponential per node within reach.
   const int cell = grid_.cell(x);
-  double w[kChunk], e[kChunk];
+  double w[kReachChunk], e[kReachChunk];
   double g = 0;
   for (const int *j = grid_.begin(cell), *end = grid_.end(cell); j != end;) {
     int m = 0;
-    for (const int* stop = j + std::min<std::ptrdiff_t>(kChunk, end - j); j != stop; ++j) {
+    for (const int* stop = j + std::min<std::ptrdiff_t>(kReachChunk, end - j); j != stop; ++j) {
       const std::array<double, 4>& p = points_[*j];
       const double d = x.x() * p[0] + x.y() * p[1] + x.z() * p[2];
       w[m] = p[3];

@@ -1,4 +1,5 @@
 #include "gauss/style/presets.h"
+#include "gauss/util/constants.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -7,7 +8,6 @@ namespace gauss {
 namespace {
 
 using Eigen::Vector3d;
-const double kPi = 3.14159265358979323846;
 
 // Face normals of a regular n-gon prism's sides, optionally tilted up by `elevation` radians.
 std::vector<Vector3d> ring_of_normals(int n, double elevation, double phase = 0.0) {

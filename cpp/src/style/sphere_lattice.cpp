@@ -1,4 +1,5 @@
 #include "gauss/style/sphere_lattice.h"
+#include "gauss/util/constants.h"
 
 #include <algorithm>
 #include <array>
@@ -33,12 +34,12 @@ int SphereLattice::frequency_for_spacing(double angle) {
   if (!(angle > 0)) throw std::invalid_argument("lattice spacing must be positive");
   for (int n = 1; n < kMaxFrequency; ++n) {
     const double nodes = 10.0 * n * n + 2.0;
-    if (std::sqrt(4.0 * M_PI / (0.5 * std::sqrt(3.0) * nodes)) <= angle) return n;
+    if (std::sqrt(4.0 * kPi / (0.5 * std::sqrt(3.0) * nodes)) <= angle) return n;
   }
   return kMaxFrequency;
 }
 
-double SphereLattice::mean_spacing() const { return std::sqrt(4.0 * M_PI / (0.5 * std::sqrt(3.0) * size())); }
+double SphereLattice::mean_spacing() const { return std::sqrt(4.0 * kPi / (0.5 * std::sqrt(3.0) * size())); }
 
 SphereLattice::SphereLattice(int n) : frequency_(n) {
   if (n < 1 || n > kMaxFrequency) throw std::invalid_argument("lattice frequency must lie between 1 and 64");
