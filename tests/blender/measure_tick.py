@@ -20,10 +20,10 @@ A mesh above its Proxy Threshold runs on a proxy, as a live run does (docs/inter
 Sculpt-sized meshes): the set-up includes making the proxy, and the line says its size. Its steps
 run on a worker thread (run/proxy_stepper.py), so a tick no longer contains a step: ticks come every
 live_run.TICK_SECONDS, as the modal operator's timer gives them, and most find the step still running
-and return at once. TICKS then counts the ticks that write a new state (the transfer, the write into
-the mesh, the settings' sync and the start of the next step), and "median tick ms" is theirs; the
-line adds the proxy's step on the worker, the ticks that found it running, and the proxy steps per
-second the run made (what the artist sees move).
+and return at once. TICKS then counts the ticks that write a new state (the write into the mesh,
+the settings' sync and the start of the next step; the transfer to the whole mesh is the worker's),
+and "median tick ms" is theirs; the line adds the worker's step and transfer, the ticks that found it
+running, and the proxy steps per second the run made (what the artist sees move).
 
 --finish: after the ticks, what Enter does on a proxy run: the full-resolution finish from the
 transfer until converged at the default Tolerance. Prints "finish ms: X (set-up: S, N steps)" and
@@ -112,8 +112,8 @@ def main():
     print("mesh %s: %d vertices, %d solver faces, set-up %.0f ms (%.1f s CPU)%s"
           % (mesh, run.arrays.num_vertices, len(run.arrays.triangles), setup_ms, setup_cpu, proxy))
     if handles is None and on_proxy:
-        print("median tick ms: %.2f (a tick that writes a new state: the transfer, the write and the sync; "
-              "the proxy's step, on a worker: %.2f) over %d ticks; %d ticks found the step running (median "
+        print("median tick ms: %.2f (a tick that writes a new state: the write into the mesh and the sync; "
+              "the proxy's step and its transfer, on a worker: %.2f) over %d ticks; %d ticks found the step running (median "
               "%.3f ms); %.1f proxy steps per second; %d threads"
               % (tick, step, len(tick_ms), len(waiting_ms), statistics.median(waiting_ms) if waiting_ms else 0.0,
                  steps_per_second, run.gauss_core.get_num_threads()))

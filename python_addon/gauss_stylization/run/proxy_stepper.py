@@ -1,12 +1,12 @@
 """A proxy run's solver steps on a worker thread, one step at a time, while Blender's main thread
-transfers and writes the previous one (issue 31: a live tick of a sculpt under 50 ms).
+writes the previous one into the mesh (issue 31: a live tick of a sculpt under 50 ms).
 
 The main thread alone decides when a step starts (``start()``) and touches the solver only while the
 worker is ``idle``: every change of settings, pins or weights then lands between two steps, in the
-order the artist made it, as in a run stepped on the main thread. The worker writes each finished
-step's vertices into its own buffer (``out``), never into Blender's mesh; session.Session copies
-them out once the step is done. gauss_core.Solver.step releases the GIL, so the main thread runs
-meanwhile.
+order the artist made it, as in a run stepped on the main thread. What a step does on the worker is
+session.Session's (``work``: the step, its read-out and its transfer to the whole mesh, into the
+worker's own buffers, never into Blender's mesh); the session takes the buffers once the step is
+done. gauss_core's step and transfer release the GIL, so the main thread runs meanwhile.
 
 One persistent thread per run on a proxy (woken by an Event), not one per step: a tick allocates
 nothing.
@@ -17,11 +17,11 @@ import time
 
 
 class ProxyStepper:
-    """Steps ``solver`` once per ``start()`` on a worker thread; its vertices go to ``out`` ((#P,3)
-    float32, the worker's: read it only while ``idle``)."""
+    """Runs ``work()`` (one step and what goes with it) once per ``start()`` on a worker thread; what it
+    writes is read only while ``idle``."""
 
-    def __init__(self, solver, out):
-        self._solver, self.out = solver, out
+    def __init__(self, work):
+        self._work = work
         self._go = threading.Event()
         self._idle = threading.Event()
         self._idle.set()
@@ -69,8 +69,7 @@ class ProxyStepper:
                 return
             start = time.perf_counter()
             try:
-                self._solver.step(1)
-                self._solver.vertices_into(self.out)
+                self._work()
                 self.error = None
             except BaseException as exc:  # noqa: BLE001 (the main thread raises it where it takes the step)
                 self.error = exc

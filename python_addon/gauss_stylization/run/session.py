@@ -246,12 +246,18 @@ class Session:
             raise _solver_error(exc) from exc
         self.solver = solver
         # The solver writes its result straight into this buffer every step (through the proxy's
-        # buffer and its transfer on a proxy): preallocated, so a tick allocates nothing.
+        # buffer and its transfer on a proxy; on a worker, into buffers swapped with these, take_step):
+        # preallocated, so a tick allocates nothing.
         self.result = np.empty_like(self.arrays.coords)
         self._proxy_result = None if self.proxy is None else np.empty((self.proxy.num_vertices, 3), np.float32)
         # A live run on a proxy steps on a worker thread (start_step / take_step / write_taken; made at
-        # the first start_step); None: steps run on the calling thread (step()).
+        # the first start_step); None: steps run on the calling thread (step()). The worker writes its
+        # step into buffers of its own, which take_step swaps with result and _proxy_result (no copy, no
+        # allocation); _worker_range is the min and max of its result (the blow-up check, off the main
+        # thread too).
         self.stepper = None
+        self._worker_result = self._worker_proxy = None
+        self._worker_range = [0.0, 0.0]
         self._readouts = {}      # the solver's read-outs when the worker's step began (_readout)
         self._queued_pins = []   # pin targets moved while the worker stepped, in order (move_pins)
         # Coordinates beyond these (MAX_EXTENT mesh sizes around the rest mesh) mean a blow-up.
@@ -588,26 +594,37 @@ class Session:
     def start_step(self):
         """Start the next step on the worker (not while ``stepping`` or ``step_done``); returns at once."""
         if self.stepper is None:
-            self.stepper = ProxyStepper(self.solver, np.empty_like(self._proxy_result))
+            self._worker_result = np.empty_like(self.result)
+            self._worker_proxy = np.empty_like(self._proxy_result)
+            self.stepper = ProxyStepper(self._worker_step)
         for name in self.READOUTS:
             self._readouts[name] = getattr(self.solver, name)
         self.stepper.start()
 
+    def _worker_step(self):
+        """One step on the worker: the solver, the proxy and the worker's own buffers only."""
+        self.solver.step(1)
+        self.solver.vertices_into(self._worker_proxy)
+        self.proxy.proxy.transfer(self._worker_proxy, self._worker_result)
+        self._worker_range[0], self._worker_range[1] = self._worker_result.min(), self._worker_result.max()
+
     def take_step(self):
-        """Once ``step_done``: copy the step's proxy vertices out of the worker's buffer (for write_taken)
-        and count it, then make the pin moves that waited for it. Raises what the step raised."""
+        """Once ``step_done``: the step's buffers become result and _proxy_result (for write_taken), the
+        step is counted, then the pin moves that waited for it are made. Raises what the step raised."""
         stepper = self.stepper
         stepper.pending = False
         error, stepper.error = stepper.error, None
         if error is not None:
             raise error
-        np.copyto(self._proxy_result, stepper.out)
+        self.result, self._worker_result = self._worker_result, self.result
+        self._proxy_result, self._worker_proxy = self._worker_proxy, self._proxy_result
+        self._taken_range = tuple(self._worker_range)
         self._count(1, stepper.ms)
         self._move_queued_pins()
 
     def write_taken(self):
-        """Transfer the step take_step() took to the whole mesh and write it (while the next one runs)."""
-        self._write()
+        """Write the step take_step() took (transferred on the worker) into the mesh, while the next runs."""
+        self._check_and_write(*self._taken_range)
 
     def stop_stepping(self):
         """End the worker (waiting for its step, which is dropped: the mesh keeps the last one written,
@@ -654,7 +671,10 @@ class Session:
             self.proxy.proxy.transfer(self._proxy_result, self.result)
         # Never write NaN or a blown-up shape into the artist's mesh: two reductions, which
         # propagate NaN and allocate nothing.
-        low, high = self.result.min(), self.result.max()
+        self._check_and_write(self.result.min(), self.result.max())
+
+    def _check_and_write(self, low, high):
+        """Write self.result, whose coordinates lie within [low, high], unless it blew up."""
         if not (self.bounds[0] <= low and high <= self.bounds[1]):
             raise SettingsError(
                 "The solver produced invalid positions after step %d (%s), so Stylize stopped. "
