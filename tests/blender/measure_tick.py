@@ -113,8 +113,8 @@ def main():
           % (mesh, run.arrays.num_vertices, len(run.arrays.triangles), setup_ms, setup_cpu, proxy))
     if handles is None and on_proxy:
         print("median tick ms: %.2f (a tick that writes a new state: the write into the mesh and the sync; "
-              "the proxy's step and its transfer, on a worker: %.2f) over %d ticks; %d ticks found the step running (median "
-              "%.3f ms); %.1f proxy steps per second; %d threads"
+              "the proxy's step and its transfer, on a worker: %.2f) over %d ticks; %d ticks found the step "
+              "running (median %.3f ms); %.1f proxy steps per second; %d threads"
               % (tick, step, len(tick_ms), len(waiting_ms), statistics.median(waiting_ms) if waiting_ms else 0.0,
                  steps_per_second, run.gauss_core.get_num_threads()))
         return

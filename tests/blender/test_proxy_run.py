@@ -346,3 +346,27 @@ def test_a_proxy_step_that_raises_stops_its_object_with_the_error(addon):
     assert outcome.stopped == [(session, "the factor broke")]
     assert live.sessions == [] and session.stepper is None
     assert np.array_equal(helpers.coords(obj), start)
+
+
+def test_a_save_or_a_deletion_while_a_proxy_step_runs(addon):
+    obj = _bunny(addon)
+    start = helpers.coords(obj)
+    live, session, gated = _gated_run(obj)
+    _live(live, 3)
+    _hold_a_step(live, session, gated)
+    shown = helpers.coords(obj)
+    live.hold_for_save()  # save_pre: the file gets the mesh as before the run, the step goes on
+    assert np.array_equal(helpers.coords(obj), start) and session.stepping
+    live.resume_after_save()  # save_post: the last step written is back, not the one still running
+    assert np.array_equal(helpers.coords(obj), shown)
+    gated.gate.set()
+    _live(live, 2)
+    assert not gated.waited_out and not np.array_equal(helpers.coords(obj), shown)
+
+    _hold_a_step(live, session, gated)
+    mesh = obj.data
+    helpers.bpy.data.objects.remove(obj)  # deleted mid-step: the run drops it, its worker ends
+    threading.Timer(0.2, gated.gate.set).start()
+    assert live.drop_gone() == [session.name]
+    assert live.sessions == [] and session.stepper is None and not gated.waited_out
+    assert np.array_equal(helpers.mesh_coords(mesh), start)  # restored: another object may share it
