@@ -191,7 +191,8 @@ class LiveRun:
     # -- running ------------------------------------------------------------------
 
     def tick(self, budget=TICK_BUDGET):
-        """Sync settings and step objects in turn for up to ``budget`` seconds (at least one step)."""
+        """Sync settings and step objects in turn for up to ``budget`` seconds (at least one step); an
+        object on a proxy steps on its worker instead (_tick_on_proxy)."""
         outcome = TickOutcome()
         if self.held:  # a save that failed never reached its save_post: put the results back now
             self.resume_after_save()
@@ -255,8 +256,9 @@ class LiveRun:
 
     def _tick_on_proxy(self, session, outcome):
         """A tick of a session on a proxy, whose steps run on a worker thread (proxy_stepper.py): while a
-        step runs, nothing (the changes wait for it); once it is done, take it, let the changes reach the
-        solver, start the next step, and transfer and write the one taken while the next runs. So the
+        step runs, nothing (the changes wait for it); once it is done, take it (transferred to the whole
+        mesh on the worker), let the changes reach the solver, start the next step, and write the one
+        taken into the mesh while the next runs. So the
         changes reach the solver between the same steps, in the same order, as on the main thread, and
         the main thread never waits for a step. Returns 1 if it wrote a new state, else 0."""
         if session.stepping:

@@ -49,10 +49,6 @@ class ProxyStepper:
         self._idle.clear()
         self._go.set()
 
-    def wait(self, timeout=None):
-        """Wait for the step running, if any. True once idle."""
-        return self._idle.wait(timeout)
-
     def stop(self):
         """End the worker after the step running, if any, and wait for it: the solver is the caller's
         again (a step is at most a fraction of a second, so Esc and Enter wait at most that)."""
