@@ -370,3 +370,28 @@ def test_a_save_or_a_deletion_while_a_proxy_step_runs(addon):
     assert live.drop_gone() == [session.name]
     assert live.sessions == [] and session.stepper is None and not gated.waited_out
     assert np.array_equal(helpers.mesh_coords(mesh), start)  # restored: another object may share it
+
+
+def test_weight_paint_entered_while_a_proxy_step_runs_holds_the_mesh_still(addon):
+    obj = _bunny(addon)
+    live, session, gated = _gated_run(obj)
+    _live(live, 3)
+    _hold_a_step(live, session, gated)
+    shown = helpers.coords(obj)
+    try:
+        helpers.bpy.ops.object.mode_set(mode='WEIGHT_PAINT')  # the strokes must land where it is shown
+        gated.gate.set()
+        steps = session.steps
+        deadline = time.monotonic() + LIMIT
+        while session.steps == steps or session.stepping:
+            assert time.monotonic() < deadline
+            live.tick()
+            time.sleep(0.001)
+        for _ in range(5):
+            live.tick()
+        assert np.array_equal(helpers.coords(obj), shown) and not session.stepping
+    finally:
+        helpers.bpy.ops.object.mode_set(mode='OBJECT')
+    _live(live, 2)  # back in Object Mode the run goes on
+    assert not np.array_equal(helpers.coords(obj), shown)
+    live.cancel()

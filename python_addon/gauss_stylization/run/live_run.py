@@ -282,8 +282,8 @@ class LiveRun:
             if session.busy is None and not session.painting and not session.at_rest:
                 self._proxy_base[session] = self._settling_base(session)
                 session.start_step()
-        if not taken:
-            return 0
+        if not taken or session.painting:  # held still while painted, as tick() holds it: the step taken
+            return 0                        # began before, and shows once the strokes are read
         try:
             session.write_taken()
         except (SettingsError, ValueError, RuntimeError) as exc:
