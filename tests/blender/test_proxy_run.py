@@ -395,3 +395,26 @@ def test_weight_paint_entered_while_a_proxy_step_runs_holds_the_mesh_still(addon
     _live(live, 2)  # back in Object Mode the run goes on
     assert not np.array_equal(helpers.coords(obj), shown)
     live.cancel()
+
+
+def test_a_handle_move_the_solver_refuses_after_a_proxy_step_makes_the_handles_stale(addon):
+    obj = _bunny(addon)
+    start = helpers.coords(obj)
+    helpers.add_group(obj, "Pins", np.flatnonzero(start[:, 2] - start[:, 2].min() < 0.1 * np.ptp(start[:, 2])))
+    obj.gauss_stylization.pin_group = "Pins"
+    live, session, gated = _gated_run(obj)
+    _live(live, 2)
+    handles = addon.handles.handles.Handles(session)
+    _hold_a_step(live, session, gated)
+    rest = np.asarray(gated._inner.pin_positions)
+    session.move_pins(rest + np.inf)  # not finite: refused, but only once the step is done
+    assert handles.current()
+    gated.gate.set()
+    steps = session.steps
+    while session.steps == steps:
+        live.tick()
+        time.sleep(0.001)
+    assert not handles.current()  # rebuilt from the solver, which kept its targets
+    assert np.array_equal(np.asarray(gated._inner.pin_positions), rest)
+    assert np.array_equal(addon.handles.handles.Handles(session).targets, rest)
+    live.cancel()

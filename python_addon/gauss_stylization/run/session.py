@@ -258,6 +258,7 @@ class Session:
         self.stepper = None
         self._worker_result = self._worker_proxy = None
         self._worker_range = [0.0, 0.0]
+        self._taken_range = (0.0, 0.0)  # _worker_range of the step take_step took, for write_taken
         self._readouts = {}      # the solver's read-outs when the worker's step began (_readout)
         self._queued_pins = []   # pin targets moved while the worker stepped, in order (move_pins)
         # Coordinates beyond these (MAX_EXTENT mesh sizes around the rest mesh) mean a blow-up.
@@ -274,7 +275,8 @@ class Session:
         self.step_ms = deque(maxlen=TIMINGS_KEPT)  # ms per step, of the last TIMINGS_KEPT step() / step_until()
         self.background_pins = background_pins
         self.pins_setup = None         # a PinsSetup running or not yet looked at
-        # Counts the Pin Group changes sent to the solver: handles.Handles built before one are stale.
+        # Counts the Pin Group changes sent to the solver (and the handle moves it refused after a worker's
+        # step, _move_queued_pins): handles.Handles built before one are stale.
         self.pin_changes = 0
         self._mode = self.obj.mode  # the object's mode at the last tick: a return from Weight Paint re-reads weights
         self._pin_group_before = None  # applied["pin_group"] before it
@@ -639,7 +641,7 @@ class Session:
         for targets in queued:
             try:
                 self._move_pins_now(targets)
-            except ValueError:  # refused (too far): the handles show the solver's targets again
+            except ValueError:  # refused (not finite, too far): the handles show the solver's targets again
                 self.pin_changes += 1
 
     # -- counting and writing a step ---------------------------------------------------
