@@ -17,7 +17,13 @@ ms: X (move: M) ...; holding the handles: H ...": ticks while dragging and while
 holding, measured alternately under the same load.
 
 A mesh above its Proxy Threshold runs on a proxy, as a live run does (docs/interactive.md,
-Sculpt-sized meshes): the set-up includes making the proxy, and the line says its size.
+Sculpt-sized meshes): the set-up includes making the proxy, and the line says its size. Its steps
+run on a worker thread (run/proxy_stepper.py), so a tick no longer contains a step: ticks come every
+live_run.TICK_SECONDS, as the modal operator's timer gives them, and most find the step still running
+and return at once. TICKS then counts the ticks that write a new state (the write into the mesh,
+the settings' sync and the start of the next step; the transfer to the whole mesh is the worker's),
+and "median tick ms" is theirs; the line adds the worker's step and transfer, the ticks that found it
+running, and the proxy steps per second the run made (what the artist sees move).
 
 --finish: after the ticks, what Enter does on a proxy run: the full-resolution finish from the
 transfer until converged at the default Tolerance. Prints "finish ms: X (set-up: S, N steps)" and
@@ -72,18 +78,31 @@ def main():
     setup_cpu = time.process_time() - cpu  # every thread's: on a loaded machine the wall time says little
     run = live.sessions[0]
     handles = gauss_stylization.handles.handles.Handles(run) if drag else None
-    tick_ms, move_ms, held_ms = [], [], []
-    for tick in range(ticks):
+    tick_ms, move_ms, held_ms, waiting_ms = [], [], [], []
+    interval = gauss_stylization.run.live_run.TICK_SECONDS
+    on_proxy = run.on_proxy  # until the finish (--finish) goes on at full resolution
+    written, steps_before, run_start = 0, run.steps, time.perf_counter()
+    while written < ticks:
         # Dragging: blocks of DRAG_BLOCK ticks that move the top handle every tick, between blocks
         # that hold it, so the two are measured alternately under the same machine load.
-        dragging = handles is not None and (tick // DRAG_BLOCK) % 2 == 1
+        dragging = handles is not None and (written // DRAG_BLOCK) % 2 == 1
         start = time.perf_counter()
         if dragging:  # the mouse moved since the last tick
             top = handles.parts[-1]
             handles.move(len(handles.parts) - 1, handles.targets[top] + [0.0005, 0.0, 0.0])
             move_ms.append((time.perf_counter() - start) * 1000.0)
-        live.tick()
-        (tick_ms if handles is None or dragging else held_ms).append((time.perf_counter() - start) * 1000.0)
+        outcome = live.tick()
+        elapsed = time.perf_counter() - start
+        if on_proxy and not outcome.stepped:  # its step still running on the worker: nothing written
+            waiting_ms.append(elapsed * 1000.0)
+            if run.at_rest and not (run.stepping or run.step_done):  # converged: no step will come
+                break
+        else:
+            written += 1
+            (tick_ms if handles is None or dragging else held_ms).append(elapsed * 1000.0)
+        if on_proxy:  # the next timer event (a run at full resolution steps in every tick anyway)
+            time.sleep(max(interval - elapsed, 0.0))
+    steps_per_second = (run.steps - steps_before) / (time.perf_counter() - run_start)
     step = statistics.median(run.step_ms)
     tick = statistics.median(tick_ms)
     proxy = " on a proxy of %d vertices" % run.proxy.num_vertices if run.on_proxy else ""
@@ -92,9 +111,17 @@ def main():
     live.cancel()
     print("mesh %s: %d vertices, %d solver faces, set-up %.0f ms (%.1f s CPU)%s"
           % (mesh, run.arrays.num_vertices, len(run.arrays.triangles), setup_ms, setup_cpu, proxy))
+    if handles is None and on_proxy:
+        print("median tick ms: %.2f (a tick that writes a new state: the write into the mesh and the sync; "
+              "the proxy's step and its transfer, on a worker: %.2f) over %d ticks; %d ticks found the step "
+              "running (median %.3f ms); %.1f proxy steps per second; %d threads"
+              % (tick, step, len(tick_ms), len(waiting_ms), statistics.median(waiting_ms) if waiting_ms else 0.0,
+                 steps_per_second, run.gauss_core.get_num_threads()))
+        return
     if handles is None:
-        print("median tick ms: %.2f (step: %.2f, write-back + sync: %.2f) over %d ticks, %d threads"
-              % (tick, step, tick - step, ticks, run.gauss_core.get_num_threads()))
+        print("median tick ms: %.2f (step: %.2f, write-back + sync: %.2f) over %d ticks, %d threads; "
+              "%.1f steps per second" % (tick, step, tick - step, ticks, run.gauss_core.get_num_threads(),
+                                         steps_per_second))
         return
     print("median drag tick ms: %.2f (move: %.2f) over %d ticks; holding the handles: %.2f over %d ticks; "
           "%d threads, %d pins in %d handles, factorizations: %d"
@@ -107,7 +134,7 @@ def finish_run(live, schema):
     """What Enter does on a proxy run, timed: the full-resolution set-up, then steps until converged."""
     session = live.sessions[0]
     session.obj.gauss_stylization.tolerance = schema.field(schema.OBJECT, "tolerance").default
-    live.tick()  # the Tolerance reaches the run, as at any tick
+    live.tick()  # the Tolerance reaches the run, as at any tick (or at start_finish on a proxy)
     start, cpu = time.perf_counter(), time.process_time()
     if not live.start_finish():
         print("finish: nothing to finish (the mesh ran at full resolution)")

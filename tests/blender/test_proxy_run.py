@@ -5,6 +5,7 @@ minutes): the proxy is used above the threshold and not below, the kept result t
 full-resolution run from scratch does, cancelling restores the mesh bit-exactly, pins hold.
 """
 
+import threading
 import time
 
 import numpy as np
@@ -27,9 +28,16 @@ def _bunny(addon, threshold=THRESHOLD):
     return obj
 
 
-def _live(live):
-    for _ in range(LIVE_TICKS):
-        live.tick()
+def _live(live, steps=LIVE_TICKS):
+    """Ticks, as the modal operator's timer gives them, until the run on a proxy has taken ``steps``
+    more steps (its steps run on a worker: a tick waits for none) or has come to rest."""
+    session = live.sessions[0]
+    wanted = session.steps + steps
+    deadline = time.monotonic() + LIMIT
+    while session.steps < wanted and not (session.at_rest and not session.stepping):
+        assert time.monotonic() < deadline, "the run did not step in time"
+        assert live.tick().stopped == []
+        time.sleep(0.001)
 
 
 def _finish(live):
@@ -42,6 +50,61 @@ def _finish(live):
         assert outcome.stopped == []
         if live.finish_setup_job is not None:
             time.sleep(0.01)
+
+
+class GatedSolver:
+    """A session's solver whose steps wait while the test holds ``gate`` closed (at most WAIT seconds,
+    then ``waited_out``), or raise ``fails``: what a test sees of a step in flight. Everything else is
+    the solver's. Put in before the run's first step (_gated_run): the worker keeps the solver it
+    started with."""
+
+    WAIT = 5.0
+
+    def __init__(self, solver):
+        gate = threading.Event()
+        gate.set()
+        for name, value in (("_inner", solver), ("gate", gate), ("entered", threading.Event()),
+                            ("waited_out", False), ("fails", None)):
+            object.__setattr__(self, name, value)
+
+    def fail_with(self, exc):
+        object.__setattr__(self, "fails", exc)
+
+    def step(self, count):
+        self.entered.set()
+        if not self.gate.wait(self.WAIT):
+            object.__setattr__(self, "waited_out", True)
+        if self.fails is not None:
+            raise self.fails
+        self._inner.step(count)
+
+    def __getattr__(self, name):
+        return getattr(self._inner, name)
+
+    def __setattr__(self, name, value):  # the run's setting changes (run_calls' setattr)
+        setattr(self._inner, name, value)
+
+
+def _gated_run(obj):
+    live = helpers.live_run([obj])
+    session = live.sessions[0]
+    gated = GatedSolver(session.solver)
+    session.solver = gated
+    return live, session, gated
+
+
+def _hold_a_step(live, session, gated):
+    """Tick until a step runs on the worker and waits at the closed gate (the ticks return meanwhile)."""
+    while session.stepping:
+        time.sleep(0.001)
+    gated.gate.clear()
+    gated.entered.clear()
+    deadline = time.monotonic() + LIMIT
+    while not gated.entered.is_set():
+        assert time.monotonic() < deadline
+        live.tick()
+        time.sleep(0.001)
+    assert session.stepping and not gated.waited_out
 
 
 def test_a_mesh_above_the_threshold_runs_on_a_proxy_and_one_below_does_not(addon):
@@ -201,3 +264,157 @@ def test_a_new_object_kept_from_a_proxy_run_has_no_recipe_to_follow(addon):
     copy = helpers.bpy.data.objects[obj.name + "_stylized"]
     assert not addon.mesh.follow_store.has(copy)
     assert "no kept run to replay" in addon.run.replay.problem(copy)
+
+
+def test_a_tick_on_a_proxy_starts_the_step_on_a_worker_and_does_not_wait_for_it(addon):
+    obj = _bunny(addon)
+    live, session, gated = _gated_run(obj)
+    _live(live, 3)
+    _hold_a_step(live, session, gated)  # on the main thread a tick would wait out the gate here
+    written, steps = helpers.coords(obj), session.steps
+    assert live.tick().stepped == 0  # nothing new yet: nothing written, the step goes on
+    assert np.array_equal(helpers.coords(obj), written) and session.steps == steps
+    assert "step %d" % steps in live.status_text()  # the status does not wait for the step either
+    gated.gate.set()
+    _live(live, 2)
+    assert not gated.waited_out
+    assert not np.array_equal(helpers.coords(obj), written)
+    live.cancel()
+
+
+def test_changes_made_while_a_proxy_step_runs_reach_the_solver_after_it_in_order(addon):
+    obj = _bunny(addon)
+    start = helpers.coords(obj)
+    helpers.add_group(obj, "Pins", np.flatnonzero(start[:, 2] - start[:, 2].min() < 0.1 * np.ptp(start[:, 2])))
+    obj.gauss_stylization.pin_group = "Pins"
+    live, session, gated = _gated_run(obj)
+    _live(live, 3)
+    _hold_a_step(live, session, gated)
+    # While the step runs: a new Lambda and two handle moves, the second the one that stays.
+    lam = gated._inner.lam
+    obj.gauss_stylization.lam = 2.5
+    rest = np.asarray(gated._inner.pin_positions)
+    shift = np.array([0.0, 0.0, 0.01 * np.ptp(start[:, 2])])
+    session.move_pins(rest + shift)
+    session.move_pins(rest + 2 * shift)
+    live.tick()
+    assert gated._inner.lam == lam  # nothing reached the solver during its step
+    assert np.array_equal(np.asarray(gated._inner.pin_positions), rest)
+    steps = session.steps
+    gated.gate.set()
+    while session.steps == steps:
+        live.tick()
+        time.sleep(0.001)
+    assert not gated.waited_out
+    assert gated._inner.lam == 2.5
+    assert np.allclose(gated._inner.pin_positions, rest + 2 * shift)
+    # Both moves and the setting, booked at the step they came after, the moves first (as made).
+    events = session.recipe["events"][-3:]
+    assert [("pins" in e, e["step"]) for e in events] == [(True, steps + 1), (True, steps + 1), (False, steps + 1)]
+    live.cancel()
+    assert np.array_equal(helpers.coords(obj), start)
+
+
+def test_cancel_while_a_proxy_step_runs_restores_exactly(addon):
+    obj = _bunny(addon)
+    start = helpers.coords(obj)
+    live, session, gated = _gated_run(obj)
+    _live(live, 5)
+    assert not np.array_equal(helpers.coords(obj), start)
+    _hold_a_step(live, session, gated)
+    threading.Timer(0.2, gated.gate.set).start()  # the step ends while Esc waits for the worker
+    live.cancel()
+    assert not gated.waited_out and session.stepper is None
+    assert np.array_equal(helpers.coords(obj), start)
+    time.sleep(0.05)
+    assert np.array_equal(helpers.coords(obj), start)
+
+
+def test_a_proxy_step_that_raises_stops_its_object_with_the_error(addon):
+    obj = _bunny(addon)
+    start = helpers.coords(obj)
+    live, session, gated = _gated_run(obj)
+    _live(live, 2)
+    gated.fail_with(RuntimeError("the factor broke"))
+    deadline = time.monotonic() + LIMIT
+    while True:
+        assert time.monotonic() < deadline
+        outcome = live.tick()
+        if outcome.stopped:
+            break
+        time.sleep(0.001)
+    assert outcome.stopped == [(session, "the factor broke")]
+    assert live.sessions == [] and session.stepper is None
+    assert np.array_equal(helpers.coords(obj), start)
+
+
+def test_a_save_or_a_deletion_while_a_proxy_step_runs(addon):
+    obj = _bunny(addon)
+    start = helpers.coords(obj)
+    live, session, gated = _gated_run(obj)
+    _live(live, 3)
+    _hold_a_step(live, session, gated)
+    shown = helpers.coords(obj)
+    live.hold_for_save()  # save_pre: the file gets the mesh as before the run, the step goes on
+    assert np.array_equal(helpers.coords(obj), start) and session.stepping
+    live.resume_after_save()  # save_post: the last step written is back, not the one still running
+    assert np.array_equal(helpers.coords(obj), shown)
+    gated.gate.set()
+    _live(live, 2)
+    assert not gated.waited_out and not np.array_equal(helpers.coords(obj), shown)
+
+    _hold_a_step(live, session, gated)
+    mesh = obj.data
+    helpers.bpy.data.objects.remove(obj)  # deleted mid-step: the run drops it, its worker ends
+    threading.Timer(0.2, gated.gate.set).start()
+    assert live.drop_gone() == [session.name]
+    assert live.sessions == [] and session.stepper is None and not gated.waited_out
+    assert np.array_equal(helpers.mesh_coords(mesh), start)  # restored: another object may share it
+
+
+def test_weight_paint_entered_while_a_proxy_step_runs_holds_the_mesh_still(addon):
+    obj = _bunny(addon)
+    live, session, gated = _gated_run(obj)
+    _live(live, 3)
+    _hold_a_step(live, session, gated)
+    shown = helpers.coords(obj)
+    try:
+        helpers.bpy.ops.object.mode_set(mode='WEIGHT_PAINT')  # the strokes must land where it is shown
+        gated.gate.set()
+        steps = session.steps
+        deadline = time.monotonic() + LIMIT
+        while session.steps == steps or session.stepping:
+            assert time.monotonic() < deadline
+            live.tick()
+            time.sleep(0.001)
+        for _ in range(5):
+            live.tick()
+        assert np.array_equal(helpers.coords(obj), shown) and not session.stepping
+    finally:
+        helpers.bpy.ops.object.mode_set(mode='OBJECT')
+    _live(live, 2)  # back in Object Mode the run goes on
+    assert not np.array_equal(helpers.coords(obj), shown)
+    live.cancel()
+
+
+def test_a_handle_move_the_solver_refuses_after_a_proxy_step_makes_the_handles_stale(addon):
+    obj = _bunny(addon)
+    start = helpers.coords(obj)
+    helpers.add_group(obj, "Pins", np.flatnonzero(start[:, 2] - start[:, 2].min() < 0.1 * np.ptp(start[:, 2])))
+    obj.gauss_stylization.pin_group = "Pins"
+    live, session, gated = _gated_run(obj)
+    _live(live, 2)
+    handles = addon.handles.handles.Handles(session)
+    _hold_a_step(live, session, gated)
+    rest = np.asarray(gated._inner.pin_positions)
+    session.move_pins(rest + np.inf)  # not finite: refused, but only once the step is done
+    assert handles.current()
+    gated.gate.set()
+    steps = session.steps
+    while session.steps == steps:
+        live.tick()
+        time.sleep(0.001)
+    assert not handles.current()  # rebuilt from the solver, which kept its targets
+    assert np.array_equal(np.asarray(gated._inner.pin_positions), rest)
+    assert np.array_equal(addon.handles.handles.Handles(session).targets, rest)
+    live.cancel()

@@ -14,7 +14,10 @@ has converged (its last step moved it by less than its Tolerance) is not
 stepped until a change of its settings, styles or pins makes its solver forget
 that, then it resumes by itself.
 
-An object above its Proxy Threshold runs on a proxy (proxy_run.py). Keeping the run then first
+An object above its Proxy Threshold runs on a proxy (proxy_run.py), whose steps run on a worker
+thread (proxy_stepper.py): its tick takes the step the worker finished, lets the changes reach the
+solver, starts the next step and writes the one taken while the next runs (_tick_on_proxy), so no
+tick waits for a step and the mesh is only ever written here, on the main thread. Keeping the run then first
 finishes it (``start_finish()``): a full-resolution solver is set up on a worker thread, warm-started
 from the shape the proxy gave the mesh, and ticks step it until it converges (``finished``); the
 operator keeps the result only then, and Esc meanwhile restores the mesh as before the run.
@@ -94,6 +97,7 @@ class LiveRun:
         # session -> (Tolerance, the most it has settled since its last change at that Tolerance): the
         # last step's change rises at times (the accelerated iteration restarts); "settling" does not go back.
         self.settled = {}
+        self._proxy_base = {}  # session on a proxy -> _settling_base() when its worker's step began
 
     @property
     def preparing(self):
@@ -132,6 +136,12 @@ class LiveRun:
         if not self._finishing:
             return False
         self.finishing = True
+        for session in self._finishing:
+            # Its worker's step is dropped (the mesh shows the last one written) and what changed while
+            # it ran reaches the session, as the next tick would have made it reach.
+            session.stop_stepping()
+            if session.busy is None:
+                session.sync_settings()  # a problem: the finish goes on with the settings that ran
         tasks = [session.finish_task() for session in self._finishing]
         self.finish_setup_job = BackgroundSetup(self._finishing[0].gauss_core, tasks)
         return True
@@ -181,7 +191,8 @@ class LiveRun:
     # -- running ------------------------------------------------------------------
 
     def tick(self, budget=TICK_BUDGET):
-        """Sync settings and step objects in turn for up to ``budget`` seconds (at least one step)."""
+        """Sync settings and step objects in turn for up to ``budget`` seconds (at least one step); an
+        object on a proxy steps on its worker instead (_tick_on_proxy)."""
         outcome = TickOutcome()
         if self.held:  # a save that failed never reached its save_post: put the results back now
             self.resume_after_save()
@@ -196,6 +207,9 @@ class LiveRun:
                 continue
             if session.busy is not None:  # re-factoring for new pins on another thread
                 continue
+            if session.on_proxy:  # its steps run on a worker: this tick waits for none of them
+                stepped += self._tick_on_proxy(session, outcome)
+                continue
             problem = session.sync_settings()
             if problem is not None:
                 if self.paused.get(session) != problem:
@@ -209,16 +223,13 @@ class LiveRun:
                 continue
             if session.at_rest:  # and nothing changed since: no step, no CPU
                 continue
-            tolerance = session.applied["tolerance"]
-            before, settled = self.settled.get(session, (None, 0.0))
-            if before != tolerance or not math.isfinite(session.reldv):  # inf: a setting changed
-                settled = 0.0
+            base = self._settling_base(session)
             try:
                 session.step()
             except (SettingsError, ValueError, RuntimeError) as exc:
                 outcome.stopped.append((session, str(exc)))
                 continue
-            self.settled[session] = (tolerance, max(settled, settling_fraction(session.reldv, tolerance) or 0.0))
+            self._settled_after(session, base)
             stepped += 1
             self.next = (index + 1) % count
             if time.perf_counter() - start > budget:
@@ -230,11 +241,62 @@ class LiveRun:
             self._drop(session)
         return outcome
 
+    def _settling_base(self, session):
+        """(Tolerance, how far ``session`` had settled) before its next step: 0 after a change."""
+        tolerance = session.applied["tolerance"]
+        before, settled = self.settled.get(session, (None, 0.0))
+        if before != tolerance or not math.isfinite(session.reldv):  # inf: a setting changed
+            settled = 0.0
+        return tolerance, settled
+
+    def _settled_after(self, session, base):
+        """Book how far ``session`` settled in the step just taken, from _settling_base()'s ``base``."""
+        tolerance, settled = base
+        self.settled[session] = (tolerance, max(settled, settling_fraction(session.reldv, tolerance) or 0.0))
+
+    def _tick_on_proxy(self, session, outcome):
+        """A tick of a session on a proxy, whose steps run on a worker thread (proxy_stepper.py): while a
+        step runs, nothing (the changes wait for it); once it is done, take it (transferred to the whole
+        mesh on the worker), let the changes reach the solver, start the next step, and write the one
+        taken into the mesh while the next runs. So the
+        changes reach the solver between the same steps, in the same order, as on the main thread, and
+        the main thread never waits for a step. Returns 1 if it wrote a new state, else 0."""
+        if session.stepping:
+            return 0
+        taken = session.step_done
+        if taken:
+            try:
+                session.take_step()
+            except (SettingsError, ValueError, RuntimeError) as exc:
+                outcome.stopped.append((session, str(exc)))
+                return 0
+            self._settled_after(session, self._proxy_base.pop(session))
+        problem = session.sync_settings()
+        if problem is not None:
+            if self.paused.get(session) != problem:
+                outcome.paused.append((session.name, problem))
+            self.paused[session] = problem
+        else:
+            self.paused.pop(session, None)
+            # Not while new pins are prepared, weights painted, or at rest (as tick() steps).
+            if session.busy is None and not session.painting and not session.at_rest:
+                self._proxy_base[session] = self._settling_base(session)
+                session.start_step()
+        if not taken or session.painting:  # held still while painted, as tick() holds it: the step taken
+            return 0                        # began before, and shows once the strokes are read
+        try:
+            session.write_taken()
+        except (SettingsError, ValueError, RuntimeError) as exc:
+            outcome.stopped.append((session, str(exc)))
+            return 0
+        return 1
+
     def _drop(self, session):
         """Restore ``session``'s object as far as it exists and take it out of the run."""
         self.sessions.remove(session)
         self.paused.pop(session, None)
         self.settled.pop(session, None)
+        self._proxy_base.pop(session, None)
         self.next = 0
         session.cancel()
 
@@ -331,7 +393,7 @@ class LiveRun:
             text = TITLE + ": step %d" % session.steps
             fraction = self.settling(session)
             if held_back_ones:
-                text += "  |  " + HELD_BACK % session.solver.held_vertices
+                text += "  |  " + HELD_BACK % session.held_vertices
             elif converged:
                 text += "  |  " + CONVERGED
             elif fraction is not None and not session.unstable:  # unstable: it does not settle
@@ -347,7 +409,7 @@ class LiveRun:
             elif converged:
                 text += "  |  %s: %s" % (CONVERGED, ", ".join(sorted("'%s'" % s.name for s in converged)))
             for session in held_back_ones:
-                text += "  |  '%s' %s" % (session.name, HELD_BACK % session.solver.held_vertices)
+                text += "  |  '%s' %s" % (session.name, HELD_BACK % session.held_vertices)
             if self.tick_ms and len(converged) + len(held_back_ones) < len(sessions):
                 text += "  |  %.1f ms/tick" % self.tick_ms[-1]
         for session in sessions:
@@ -356,7 +418,7 @@ class LiveRun:
                     session.proxy.num_vertices)
         for session, why in self.paused.items():
             text += "  |  " + (("'%s' paused: " % session.name) if len(sessions) > 1 else "paused: ") + why
-        held = sum(session.solver.held_vertices for session in sessions if session not in held_back_ones)
+        held = sum(session.held_vertices for session in sessions if session not in held_back_ones)
         if held:
             text += "  |  %d vertices held back from passing through" % held
         for session in sessions:
@@ -398,7 +460,7 @@ class LiveRun:
             elif session in self.paused:
                 lines.append(("%s: paused" % session.name, 'PAUSE'))
             elif held_back(session):
-                lines.append(("%s: %s, step %d" % (session.name, HELD_BACK % session.solver.held_vertices,
+                lines.append(("%s: %s, step %d" % (session.name, HELD_BACK % session.held_vertices,
                                                    session.steps), 'ERROR'))
             elif session in self.converged:
                 lines.append(("%s: converged, step %d" % (session.name, session.steps), 'CHECKMARK'))

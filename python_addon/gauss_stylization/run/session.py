@@ -27,6 +27,7 @@ from ..settings.fields import Live, changes
 from ..settings.settings_io import add_slot, apply_dict, to_dict
 from ..settings.validation import check_coordinates, check_object, check_pins, check_settings
 from .proxy_run import ProxyMap, proxy_size
+from .proxy_stepper import ProxyStepper
 from .solver_setup import PinsSetup
 
 # A result outside the rest mesh's coordinate range widened by this many mesh sizes is treated
@@ -245,9 +246,21 @@ class Session:
             raise _solver_error(exc) from exc
         self.solver = solver
         # The solver writes its result straight into this buffer every step (through the proxy's
-        # buffer and its transfer on a proxy): preallocated, so a tick allocates nothing.
+        # buffer and its transfer on a proxy; on a worker, into buffers swapped with these, take_step):
+        # preallocated, so a tick allocates nothing.
         self.result = np.empty_like(self.arrays.coords)
         self._proxy_result = None if self.proxy is None else np.empty((self.proxy.num_vertices, 3), np.float32)
+        # A live run on a proxy steps on a worker thread (start_step / take_step / write_taken; made at
+        # the first start_step); None: steps run on the calling thread (step()). The worker writes its
+        # step into buffers of its own, which take_step swaps with result and _proxy_result (no copy, no
+        # allocation); _worker_range is the min and max of its result (the blow-up check, off the main
+        # thread too).
+        self.stepper = None
+        self._worker_result = self._worker_proxy = None
+        self._worker_range = [0.0, 0.0]
+        self._taken_range = (0.0, 0.0)  # _worker_range of the step take_step took, for write_taken
+        self._readouts = {}      # the solver's read-outs when the worker's step began (_readout)
+        self._queued_pins = []   # pin targets moved while the worker stepped, in order (move_pins)
         # Coordinates beyond these (MAX_EXTENT mesh sizes around the rest mesh) mean a blow-up.
         lower, upper = float(self.arrays.coords.min()), float(self.arrays.coords.max())
         margin = MAX_EXTENT * max(upper - lower, 1e-30)
@@ -262,7 +275,8 @@ class Session:
         self.step_ms = deque(maxlen=TIMINGS_KEPT)  # ms per step, of the last TIMINGS_KEPT step() / step_until()
         self.background_pins = background_pins
         self.pins_setup = None         # a PinsSetup running or not yet looked at
-        # Counts the Pin Group changes sent to the solver: handles.Handles built before one are stale.
+        # Counts the Pin Group changes sent to the solver (and the handle moves it refused after a worker's
+        # step, _move_queued_pins): handles.Handles built before one are stale.
         self.pin_changes = 0
         self._mode = self.obj.mode  # the object's mode at the last tick: a return from Weight Paint re-reads weights
         self._pin_group_before = None  # applied["pin_group"] before it
@@ -302,6 +316,7 @@ class Session:
         """A proxy run's full-resolution solver, to be built on a worker thread: (weight, text, run) for
         solver_setup.BackgroundSetup; run(progress) returns the solver. Read here, on the main thread:
         the settings the run has now, the mesh's pins and where the proxy's pins put them."""
+        self.stop_stepping()
         self._stop_pins()
         options = {field.name: self.applied[field.name] for field in schema.SOLVER_SETTERS}
         pins = np.asarray(self.fine_pins, np.int32)
@@ -376,7 +391,17 @@ class Session:
 
     def move_pins(self, targets):
         """New targets ((#P,3), object space) for the pinned vertices (a handle's drag, a script's pin
-        targets), without re-factoring. Raises ValueError if the solver refuses them."""
+        targets), without re-factoring. Raises ValueError if the solver refuses them.
+
+        While the worker steps (a proxy run) the move waits, in order, for the step to end
+        (take_step), so that a drag never blocks the main thread; the solver then checks it, and a
+        move it refuses is dropped and the handles rebuilt from the solver's targets (pin_changes)."""
+        if self.stepper is not None and not self.stepper.idle:
+            self._queued_pins.append(np.array(targets, np.float64))
+            return
+        self._move_pins_now(targets)
+
+    def _move_pins_now(self, targets):
         before = self.mesh_pin_targets()
         self.solver.set_pin_positions(targets)
         # Only the rows that moved (a handle moves its part's pins): a long drag stays small in the recipe.
@@ -493,26 +518,41 @@ class Session:
         factorization stay (a warm start, see bake.py)."""
         self.solver.set_vertices(coords)
 
+    # The solver's read-outs that the run's status shows at every redraw. Each locks the solver, so
+    # while the worker steps they are the ones read when its step began (start_step): the main thread
+    # never waits for a step to say how far the run is.
+    READOUTS = ("converged", "held_back", "last_reldv", "held_vertices")
+
+    def _readout(self, name):
+        if self.stepper is not None and not self.stepper.idle:
+            return self._readouts[name]
+        return getattr(self.solver, name)
+
     @property
     def converged(self):
         """Did the last step move the mesh by less than the Tolerance, with nothing changed since?
         (The solver forgets it at any change of settings, styles or pins.)"""
-        return self.solver.converged
+        return self._readout("converged")
 
     @property
     def held_back(self):
         """Did the run stop moving only because Avoid Self-Intersections holds it (not converged)?"""
-        return self.solver.held_back
+        return self._readout("held_back")
 
     @property
     def at_rest(self):
         """Converged or held back: another step would not move the mesh, until something changes."""
-        return self.solver.converged or self.solver.held_back
+        return self.converged or self.held_back
 
     @property
     def reldv(self):
         """The last step's relative change (inf before the first step and after a change)."""
-        return self.solver.last_reldv
+        return self._readout("last_reldv")
+
+    @property
+    def held_vertices(self):
+        """How many vertices Avoid Self-Intersections held back in the last step."""
+        return self._readout("held_vertices")
 
     def step(self, count=1):
         """Run ``count`` solver iterations and write the result to the target."""
@@ -541,8 +581,82 @@ class Session:
         """Sorted (#H,) indices of the vertices the guard has held back in some step of this run."""
         return np.flatnonzero(self._ever_held)
 
+    # -- stepping on a worker thread (a live run on a proxy, proxy_stepper.py) ---------------
+
+    @property
+    def stepping(self):
+        """Is the worker's step still running? (Nothing of the solver is to be touched meanwhile.)"""
+        return self.stepper is not None and self.stepper.pending and not self.stepper.idle
+
+    @property
+    def step_done(self):
+        """Has the worker finished a step that take_step() has not taken yet?"""
+        return self.stepper is not None and self.stepper.done
+
+    def start_step(self):
+        """Start the next step on the worker (not while ``stepping`` or ``step_done``); returns at once."""
+        if self.stepper is None:
+            self._worker_result = np.empty_like(self.result)
+            self._worker_proxy = np.empty_like(self._proxy_result)
+            self.stepper = ProxyStepper(self._worker_step)
+        for name in self.READOUTS:
+            self._readouts[name] = getattr(self.solver, name)
+        self.stepper.start()
+
+    def _worker_step(self):
+        """One step on the worker: the solver, the proxy and the worker's own buffers only."""
+        self.solver.step(1)
+        self.solver.vertices_into(self._worker_proxy)
+        self.proxy.proxy.transfer(self._worker_proxy, self._worker_result)
+        self._worker_range[0], self._worker_range[1] = self._worker_result.min(), self._worker_result.max()
+
+    def take_step(self):
+        """Once ``step_done``: the step's buffers become result and _proxy_result (for write_taken), the
+        step is counted, then the pin moves that waited for it are made. Raises what the step raised."""
+        stepper = self.stepper
+        stepper.pending = False
+        error, stepper.error = stepper.error, None
+        if error is not None:
+            raise error
+        self.result, self._worker_result = self._worker_result, self.result
+        self._proxy_result, self._worker_proxy = self._worker_proxy, self._proxy_result
+        self._taken_range = tuple(self._worker_range)
+        self._count(1, stepper.ms)
+        self._move_queued_pins()
+
+    def write_taken(self):
+        """Write the step take_step() took (transferred on the worker) into the mesh, while the next runs."""
+        self._check_and_write(*self._taken_range)
+
+    def stop_stepping(self):
+        """End the worker (waiting for its step, which is dropped: the mesh keeps the last one written,
+        what the artist saw) and make the pin moves that waited. The solver is this thread's again."""
+        stepper, self.stepper = self.stepper, None
+        if stepper is not None:
+            stepper.stop()
+            self._move_queued_pins()
+
+    def _move_queued_pins(self):
+        queued, self._queued_pins = self._queued_pins, []
+        for targets in queued:
+            try:
+                self._move_pins_now(targets)
+            except ValueError:  # refused (not finite, too far): the handles show the solver's targets again
+                self.pin_changes += 1
+
+    # -- counting and writing a step ---------------------------------------------------
+
     def _stepped(self, count, start):
-        self.step_ms.append((time.perf_counter() - start) * 1000.0 / max(count, 1))
+        self._count(count, (time.perf_counter() - start) * 1000.0 / max(count, 1))
+        if self.proxy is None:
+            self.solver.vertices_into(self.result)
+        else:
+            self.solver.vertices_into(self._proxy_result)
+        self._write()
+
+    def _count(self, count, ms):
+        """Book ``count`` steps just taken (``ms`` each): the step count, runaways, held vertices."""
+        self.step_ms.append(ms)
         self.steps += count
         runaways = self.solver.runaway_steps  # since the solver's last reset: it may go down
         if runaways > self._runaways:
@@ -551,14 +665,18 @@ class Session:
         if self.solver.held_vertices:  # the last of the ``count`` steps: a tick steps once
             held = self.solver.held_vertex_indices
             self._ever_held[held if self.proxy is None else self.proxy.fine[held]] = True
-        if self.proxy is None:
-            self.solver.vertices_into(self.result)
-        else:
-            self.solver.vertices_into(self._proxy_result)
+
+    def _write(self):
+        """Write the step read out (self.result, or on a proxy its transfer of self._proxy_result) into the
+        target, unless it blew up."""
+        if self.proxy is not None:
             self.proxy.proxy.transfer(self._proxy_result, self.result)
         # Never write NaN or a blown-up shape into the artist's mesh: two reductions, which
         # propagate NaN and allocate nothing.
-        low, high = self.result.min(), self.result.max()
+        self._check_and_write(self.result.min(), self.result.max())
+
+    def _check_and_write(self, low, high):
+        """Write self.result, whose coordinates lie within [low, high], unless it blew up."""
         if not (self.bounds[0] <= low and high <= self.bounds[1]):
             raise SettingsError(
                 "The solver produced invalid positions after step %d (%s), so Stylize stopped. "
@@ -571,6 +689,7 @@ class Session:
 
     def keep(self):
         """Keep the result; remember the start coordinates for the Reset operator."""
+        self.stop_stepping()  # the result is the last step written
         self._stop_pins()  # a Pin Group change still being prepared never reached the result
         self.target.keep()
         rest_store.capture(*self.target.rest)
@@ -606,6 +725,7 @@ class Session:
         another object may share it, and undo reuses the mesh as it is in memory.
         A freed mesh, or one whose vertex count changed, is left alone (output.py).
         """
+        self.stop_stepping()  # the worker never writes the mesh; it only must not outlive the run
         self._stop_pins()
         self.target.restore()
 
