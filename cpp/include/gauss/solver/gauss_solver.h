@@ -116,7 +116,8 @@ class GaussSolver {
   const settings::Momentum& momentum() const { return iteration_.momentum(); }  // the method's
   // Avoid Self-Intersections (settings::avoid_self_intersections, self_intersection.h): no step and no
   // move of the pins brings two faces into contact that were not in contact at the start (when it is
-  // switched on, and after reset() or set_vertices()); vertices that would are held back short of it.
+  // switched on, and after reset() or set_vertices()); vertices that would are held back short of it,
+  // and the next global steps hold them there with contact springs (contact_springs.h).
   // Switching it on allocates the guard (std::bad_alloc or OutOfMemory like the set-up).
   void set_avoid_self_intersections(bool on);
   // Resolution Independent (settings::resolution_independent, docs/resolution.md): each face's preference
