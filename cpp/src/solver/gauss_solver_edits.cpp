@@ -176,7 +176,7 @@ void GaussSolver::set_avoid_self_intersections(bool on) {
   if (on == avoid_self_intersections()) return;
   if (on) {
     const int64_t nV = topo_.num_vertices, nF = static_cast<int64_t>(topo_.faces.size());
-    check_memory(SelfIntersectionGuard::bytes_needed(nV, nF) + 24 * nV,
+    check_memory(SelfIntersectionGuard::bytes_needed(nV, nF) + 24 * nV + ContactSprings::bytes_needed(nV),
                  "the self-intersection guard for " + std::to_string(nV) + " vertices");
     guard_ = std::make_unique<SelfIntersectionGuard>(topo_, rest_);
     safe_.resize(topo_.num_vertices);

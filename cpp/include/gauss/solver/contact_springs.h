@@ -22,6 +22,7 @@
 // A spring stays kKeepSteps steps after its vertex was last held, so that a contact the springs keep
 // apart (the guard then holds nothing there) does not let go at once and press in again.
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 #include "gauss/mesh/mesh_topology.h"
@@ -41,6 +42,10 @@ class ContactSprings {
   // leaves: on the 14.6K armadillo 1e-4 took 20 iterations a step against 9, for the same share.
   static constexpr double kTolerance = 1e-2;
   static constexpr int kMaxIterations = 40;
+
+  // Bytes the springs may hold for a mesh of this many vertices: the per-vertex slot and three
+  // buffers of the unknowns (the per-spring arrays come on top, as many as vertices are held).
+  static int64_t bytes_needed(int64_t num_vertices) { return (4 + 3 * 24) * num_vertices; }
 
   void set_stiffness(double stiffness) { stiffness_ = stiffness; }
   double stiffness() const { return stiffness_; }
