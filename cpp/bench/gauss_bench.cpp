@@ -1,5 +1,5 @@
 // gauss_bench MESH [--method gauss|cubic] [--style NAME] [--lambda L] [--sigma S] [--mu M] [--steps N]
-//             [--admm N] [--until TOL] [--acceleration on|off] [--avoid-self-intersections]
+//             [--admm N] [--until TOL] [--acceleration on|off] [--avoid-self-intersections [--contact-stiffness K]]
 //             [--resolution-independent [--reference-face-area A]] [--square-flat-regions]
 //             [--threads N] [--out OUT.obj]   (defaults: the solver's, printed by usage())
 // Times set-up and steps of the solver on one mesh and reports how far the style took hold.
@@ -11,7 +11,8 @@
 // turns the solver's guard on (self_intersection.h). Every run prints intersecting_pairs: BEFORE ->
 // AFTER, the pairs of faces that cross in the input and in the result (each pair once; Blender's
 // BVHTree.overlap lists each twice), and step_held_vertices_max, the most vertices the guard held back
-// in one step. --resolution-independent weights each face's preference by its area
+// in one step; with the guard also contact_springs_max and contact_iterations_median (contact_springs.h),
+// whose stiffness --contact-stiffness sets (0: the guard alone). --resolution-independent weights each face's preference by its area
 // (settings::resolution_independent, docs/resolution.md); --reference-face-area sets its reference
 // density (default settings::reference_face_area), to measure that choice.
 // A preset's name may be written with '-' for '_' (--style sheet-metal); sheet_metal runs at
@@ -61,14 +62,16 @@ int usage() {
   std::fprintf(stderr,
                "usage: gauss_bench MESH [--method %s] [--style %s] [--lambda %g (cubic: %g)] [--sigma %g] [--mu %g]\n"
                "                   [--steps %d] [--admm %d] [--until TOL (e.g. %g; then --steps is the cap, default %d)]\n"
-               "                   [--acceleration %s] [--avoid-self-intersections] [--resolution-independent]\n"
+               "                   [--acceleration %s] [--avoid-self-intersections [--contact-stiffness K (default %g)]]\n"
+               "                   [--resolution-independent]\n"
                "                   [--reference-face-area A (default %g)] [--square-flat-regions]\n"
                "                   [--threads N] [--out OUT.obj]\n",
                settings::default_method, settings::default_preset, settings::lambda.default_value,
                settings::cubic_lambda.default_value, settings::sigma.default_value, settings::mu.default_value,
                kDefaultSteps, static_cast<int>(settings::admm_iterations.default_value),
                settings::tolerance.default_value, kDefaultCap,
-               settings::acceleration.default_value ? "on" : "off", settings::reference_face_area);
+               settings::acceleration.default_value ? "on" : "off", gauss::ContactSprings::kDefaultStiffness,
+               settings::reference_face_area);
   return 2;
 }
 
@@ -88,6 +91,7 @@ int main(int argc, char** argv) {
   bool avoid_self_intersections = settings::avoid_self_intersections.default_value;
   bool resolution_independent = settings::resolution_independent.default_value;
   double reference_face_area = settings::reference_face_area;
+  double contact_stiffness = gauss::ContactSprings::kDefaultStiffness;
   bool square_flat_regions = settings::square_flat_regions.default_value;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
@@ -114,6 +118,7 @@ int main(int argc, char** argv) {
     else if (a == "--admm") admm = std::atoi(v);
     else if (a == "--threads") threads = std::atoi(v);
     else if (a == "--reference-face-area") reference_face_area = std::atof(v);
+    else if (a == "--contact-stiffness") contact_stiffness = std::atof(v);
     else if (a == "--until") until_converged = true, until = std::atof(v);
     else if (a == "--acceleration" && (std::strcmp(v, "on") == 0 || std::strcmp(v, "off") == 0))
       acceleration = std::strcmp(v, "on") == 0;
@@ -152,6 +157,7 @@ int main(int argc, char** argv) {
     solver.set_method(method);
     solver.set_acceleration(acceleration);
     solver.set_avoid_self_intersections(avoid_self_intersections);
+    solver.set_contact_stiffness(contact_stiffness);
     solver.set_resolution_independent(resolution_independent);
     solver.set_reference_face_area(reference_face_area);
     solver.set_square_flat_regions(square_flat_regions);
@@ -159,7 +165,8 @@ int main(int argc, char** argv) {
 
     if (until_converged) solver.set_tolerance(until);  // held_back() compares with it
     std::vector<double> step_ms, faces, rotations, admm_ms, rhs, solve, cubic_iterations;
-    int multi_threaded_steps = 0, held_max = 0;
+    std::vector<double> contact_iterations;
+    int multi_threaded_steps = 0, held_max = 0, springs_max = 0;
     double total_ms = 0;
     for (int s = 0; s < steps; ++s) {
       const auto t = std::chrono::steady_clock::now();
@@ -174,6 +181,8 @@ int main(int argc, char** argv) {
       solve.push_back(pt.solve);
       multi_threaded_steps += pt.threads > 1;
       held_max = std::max(held_max, solver.held_vertices());
+      springs_max = std::max(springs_max, solver.contact_springs());
+      if (solver.contact_springs() > 0) contact_iterations.push_back(solver.contact_iterations());
       cubic_iterations.push_back(static_cast<double>(solver.cubic_admm_iterations()) / mesh.num_vertices());
       if (until_converged && solver.last_reldv() < until) break;
     }
@@ -253,6 +262,12 @@ int main(int argc, char** argv) {
                 static_cast<long long>(gauss::count_self_intersections(triangles, points(mesh.V))),
                 static_cast<long long>(gauss::count_self_intersections(triangles, points(result))));
     std::printf("step_held_vertices_max: %d\n", held_max);
+    if (avoid_self_intersections) {
+      std::printf("contact_stiffness: %g\n", contact_stiffness);
+      std::printf("contact_springs_max: %d\n", springs_max);
+      std::printf("contact_iterations_median: %g (%d steps with springs)\n",
+                  contact_iterations.empty() ? 0.0 : median(contact_iterations), static_cast<int>(contact_iterations.size()));
+    }
     if (cubic) std::printf("E_cubic: %.6g\n", solver.cubic_energy());
     else std::printf("E_g: %.6g\n", solver.g_energy());
     std::printf("E_ARAP: %.6g\n", solver.arap_energy());

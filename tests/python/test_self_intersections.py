@@ -103,9 +103,10 @@ def test_a_mesh_that_already_crosses_itself_is_held_only_where_it_crosses(offset
         assert np.isfinite(result).all()
         shares[avoid] = _cube_share(result, F)
     after = gauss_core.self_intersections(result, F)
-    # Every crossing face at the end lies near the input's crossing.
+    # Every crossing face at the end lies near the input's crossing (there may be none left: the
+    # contact springs can push the spheres' crossing apart).
     gap = np.linalg.norm(centroids[np.unique(after)][:, None] - centroids[crossing_faces][None], axis=2).min(axis=1)
-    assert gap.max() < 0.3, gap.max()
+    assert gap.max(initial=0.0) < 0.3, gap.max(initial=0.0)
     assert 0 < held_max < len(V) // 4
     assert shares[True] > shares[False] - 0.03, shares
 
@@ -127,11 +128,16 @@ def test_a_run_the_guard_holds_is_held_back_not_converged():
     assert taken < 500 and solver.held_back and not solver.converged
     assert solver.held_vertices > 0
     assert len(gauss_core.self_intersections(solver.vertices, F)) == 0
-    # Which vertices (the caller's numbering): the pinned cap among them, which the guard stops short.
+    # Which vertices (the caller's numbering): on the halves of the spheres that face each other, the
+    # pinned cap among them. Not every pin of the cap: all stop short of their targets, but with the
+    # contact springs (contact_springs.h) the last step no longer brings every face around them into a
+    # new contact.
     held = solver.held_vertex_indices
     assert held.dtype == np.int32 and len(held) == solver.held_vertices
     assert np.all(np.diff(held) > 0) and held.min() >= 0 and held.max() < len(V)
-    assert np.isin(cap, held).all()
+    assert np.isin(cap, held).any()
+    first = held < len(V) // 2
+    assert np.all(V[held[first], 0] > 0) and np.all(V[held[~first], 0] < 2.3)  # the halves that face each other
     solver.avoid_self_intersections = False  # nothing holds it now: it moves on, and converges
     solver.step_until(1e-3, 500)
     assert solver.converged and not solver.held_back

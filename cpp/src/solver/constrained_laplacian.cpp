@@ -82,12 +82,17 @@ ConstrainedLaplacian::ConstrainedLaplacian(const MeshTopology& topo, const std::
     for (int c = 0; c < nC; ++c) component_rest_center_[c] /= component_size_[c];
 
     // Unknowns: the other referenced vertices, numbered in vertex order.
-    std::vector<int> unknown_of_vertex(nV, -1);
+    std::vector<int>& unknown_of_vertex = unknown_of_vertex_;
+    unknown_of_vertex.assign(nV, -1);
     for (int v = 0; v < nV; ++v)
       if (topo.component[v] >= 0 && fixed_index[v] < 0) {
         unknown_of_vertex[v] = static_cast<int>(vertex_of_unknown_.size());
         vertex_of_unknown_.push_back(v);
       }
+    diagonal_.assign(vertex_of_unknown_.size(), 0.0);
+    for (size_t e = 0; e < topo.edges.size(); ++e)
+      for (int v : topo.edges[e])
+        if (unknown_of_vertex[v] >= 0) diagonal_[unknown_of_vertex[v]] += edge_weight[e];
     // Edges between an unknown and a fixed vertex become couplings, in edge order.
     for (size_t e = 0; e < topo.edges.size(); ++e) {
       const int a = topo.edges[e][0], b = topo.edges[e][1];
@@ -121,8 +126,12 @@ void ConstrainedLaplacian::place_pins(std::vector<Vector3d>& X) const {
 }
 
 void ConstrainedLaplacian::solve(std::vector<Vector3d>& X) {
+  if (num_unknowns() > 0) cholesky_.solve_ordered_in_place(rhs_.data());
+  finish_solve(X);
+}
+
+void ConstrainedLaplacian::finish_solve(std::vector<Vector3d>& X) {
   const int n = num_unknowns();
-  if (n > 0) cholesky_.solve_ordered_in_place(rhs_.data());
   parallel::for_each(n, parallel::kMinParallelItems, [&](int u) {
     X[vertex_of_unknown_[u]] = Vector3d(&rhs_[3 * static_cast<size_t>(cholesky_.position(u))]);
   });

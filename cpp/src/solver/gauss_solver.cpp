@@ -454,7 +454,8 @@ void GaussSolver::local_global_step() {
   assemble_rhs(gauss ? Rhs::gauss : Rhs::cubic);
   timings_.rhs = ms_since(t0);
   t0 = Clock::now();
-  laplacian_.solve(X_);
+  if (guard_ && springs_.active()) springs_.solve(laplacian_, X_);
+  else laplacian_.solve(X_);
   timings_.solve = ms_since(t0);
 }
 
@@ -481,6 +482,7 @@ void GaussSolver::step() {
   };
   if (method_ == Method::cubic) iteration_.advance(X_, cubic_.carried_state(), rest_, 1.0, map);
   else iteration_.advance(X_, rest_, 1.0, map);
+  if (guard_ && springs_.stiffness() > 0) springs_.note_held(guard_->last_held_vertices(), X_, laplacian_, topo_);
   denied_reldv_ = 0;
   if (guard_ && guard_->last_held() > 0) {  // measured as reldV is: over the largest displacement
     double displacement = kStillDisplacement;
@@ -516,6 +518,7 @@ void GaussSolver::reset() {
   if (cubic_ready_) cubic_.reset();
   laplacian_.place_pins(X_);
   if (guard_) guard_->start_from(X_);
+  springs_.clear();
   update_reach();
   step_count_ = 0;
   runaway_steps_ = 0;

@@ -140,6 +140,7 @@ void GaussSolver::apply_pins(const std::vector<int64_t>& pinned, const double* p
   // definite), the solver keeps its previous pins and factor.
   laplacian_ = ConstrainedLaplacian(topo_, edge_weight_, rest_, internal, to_solver_frame(targets), &progress);
   ++factorization_count_;
+  springs_.clear();  // their unknowns were the old system's
   volume_ = VolumeKeeper(topo_, rest_, internal);
   pinned_input_ = pinned;
   pin_targets_ = std::move(targets);
@@ -175,7 +176,7 @@ void GaussSolver::set_avoid_self_intersections(bool on) {
   if (on == avoid_self_intersections()) return;
   if (on) {
     const int64_t nV = topo_.num_vertices, nF = static_cast<int64_t>(topo_.faces.size());
-    check_memory(SelfIntersectionGuard::bytes_needed(nV, nF) + 24 * nV,
+    check_memory(SelfIntersectionGuard::bytes_needed(nV, nF) + 24 * nV + ContactSprings::bytes_needed(nV),
                  "the self-intersection guard for " + std::to_string(nV) + " vertices");
     guard_ = std::make_unique<SelfIntersectionGuard>(topo_, rest_);
     safe_.resize(topo_.num_vertices);
@@ -184,6 +185,15 @@ void GaussSolver::set_avoid_self_intersections(bool on) {
     guard_.reset();
     std::vector<Vector3d>().swap(safe_);
   }
+  springs_.clear();
+  iteration_.invalidate();
+}
+
+void GaussSolver::set_contact_stiffness(double stiffness) {
+  if (!(stiffness >= 0 && std::isfinite(stiffness)))
+    throw std::invalid_argument("the contact stiffness must be >= 0 and finite");
+  springs_.set_stiffness(stiffness);
+  if (stiffness == 0) springs_.clear();
   iteration_.invalidate();
 }
 
@@ -216,6 +226,7 @@ void GaussSolver::set_vertices(const double* V, int count) {
   laplacian_.place_pins(X_);
   update_reach();
   if (guard_) guard_->start_from(X_);  // the caller's vertices are the new start, contacts and all
+  springs_.clear();
   std::fill(rotation_q_.begin(), rotation_q_.end(), Eigen::Quaterniond::Identity());
   std::fill(rotation_.begin(), rotation_.end(), Eigen::Matrix3d::Identity());  // the bending term reads the last step's
   if (cubic_ready_) cubic_.reset();  // the cubic method's ADMM warm start, as reset() clears it

@@ -8,7 +8,9 @@
 //
 // The guard (the solver's avoid_self_intersections setting). Why this technique: the global step's
 // matrix stays the one factored at set-up (a barrier or contact forces would change it every step),
-// and the guard only looks at the result of a step. A step of Algorithm 1 maps the vertices from a
+// and the guard only looks at the result of a step. The global step learns of the contact through
+// the vertices the guard held back: the solver gives them springs there (contact_springs.h), solved
+// with the same factor. A step of Algorithm 1 maps the vertices from a
 // state S, free of new crossings, to a candidate C. The guard refits a bounding-volume hierarchy
 // (face_bvh.h) to C and tests the faces whose boxes overlap. Where two faces cross, or come closer
 // than kContactMargin without sharing a corner, and did not already at the start, their corners first

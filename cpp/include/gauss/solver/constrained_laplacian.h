@@ -66,6 +66,22 @@ class ConstrainedLaplacian {
   // unreferenced vertices are not touched. Consumes the right-hand side. No allocation.
   void solve(std::vector<Eigen::Vector3d>& X);
 
+  // For a solve with extra terms on a few unknowns (contact_springs.h), built from the parts of solve():
+  // the right-hand side in elimination order (row position(u) holds unknown u's x, y, z), L_ff^-1
+  // applied in place to any such buffer, and the end of solve() on a right-hand side already solved.
+  double* rhs_data() { return rhs_.data(); }
+  int position(int u) const { return cholesky_.position(u); }
+  void solve_ordered_in_place(double* Y) const { cholesky_.solve_ordered_in_place(Y); }
+  void finish_solve(std::vector<Eigen::Vector3d>& X);
+  // The unknown of vertex v, -1 for a fixed or unreferenced vertex; L_ff's diagonal at unknown u (the
+  // sum of the weights of the unknown's edges).
+  int unknown_of_vertex(int v) const { return unknown_of_vertex_[v]; }
+  double diagonal(int u) const { return diagonal_[u]; }
+  // The translation the last solve() gave vertex v's component (zero for a component with a pin).
+  Eigen::Vector3d last_shift(int v) const {
+    return free_component_[v] >= 0 ? component_shift_[free_component_[v]] : Eigen::Vector3d::Zero();
+  }
+
   long long factor_nonzeros() const { return cholesky_.factor_nonzeros(); }
 
  private:
@@ -82,6 +98,8 @@ class ConstrainedLaplacian {
   std::vector<Eigen::Vector3d> fixed_position_;     // pins (#P, in pin order), then anchors
   std::vector<Coupling> couplings_;                 // in edge order (so the sums are always the same)
   std::vector<int> vertex_of_unknown_;
+  std::vector<int> unknown_of_vertex_;              // #V, -1 for fixed and unreferenced vertices
+  std::vector<double> diagonal_;                    // #unknowns: L_ff's diagonal
   std::vector<Eigen::Vector3d> constant_rhs_;       // #unknowns
   std::vector<double> rhs_;                         // #unknowns by 3, elimination order
   CholeskySolver cholesky_;

@@ -26,6 +26,7 @@
 
 #include "gauss/collision/self_intersection.h"
 #include "gauss/solver/constrained_laplacian.h"
+#include "gauss/solver/contact_springs.h"
 #include "gauss/solver/cubic_local_step.h"
 #include "gauss/solver/developable_normals.h"
 #include "gauss/solver/fixed_point_iteration.h"
@@ -115,7 +116,8 @@ class GaussSolver {
   const settings::Momentum& momentum() const { return iteration_.momentum(); }  // the method's
   // Avoid Self-Intersections (settings::avoid_self_intersections, self_intersection.h): no step and no
   // move of the pins brings two faces into contact that were not in contact at the start (when it is
-  // switched on, and after reset() or set_vertices()); vertices that would are held back short of it.
+  // switched on, and after reset() or set_vertices()); vertices that would are held back short of it,
+  // and the next global steps hold them there with contact springs (contact_springs.h).
   // Switching it on allocates the guard (std::bad_alloc or OutOfMemory like the set-up).
   void set_avoid_self_intersections(bool on);
   // Resolution Independent (settings::resolution_independent, docs/resolution.md): each face's preference
@@ -140,6 +142,12 @@ class GaussSolver {
   // The large flat regions found (empty while the setting is off), solver frame.
   const std::vector<FlatRegion>& flat_regions() const { return square_.regions; }
   bool avoid_self_intersections() const { return guard_ != nullptr; }
+  // The guard's contact springs in the global step (contact_springs.h): their stiffness (0: none, the
+  // guard alone), how many the last step had, and the conjugate-gradient iterations of its solve.
+  void set_contact_stiffness(double stiffness);
+  double contact_stiffness() const { return springs_.stiffness(); }
+  int contact_springs() const { return springs_.active() ? springs_.count() : 0; }
+  int contact_iterations() const { return springs_.active() ? springs_.last_iterations() : 0; }
   // Vertices the guard held back in the last step or pin move (0 when it is off).
   int held_vertices() const { return guard_ ? guard_->last_held() : 0; }
   // Which: held_vertices() vertex indices (caller's numbering, ascending); empty when the guard is off.
@@ -326,6 +334,7 @@ class GaussSolver {
   std::unique_ptr<SelfIntersectionGuard> guard_;     // while avoid_self_intersections is on
   std::vector<Eigen::Vector3d> safe_;                // #V while it is on: X before the step
   double denied_reldv_ = 0;                          // the last step's move the guard took back, as reldV
+  ContactSprings springs_;                           // while the guard is on: its held vertices' springs
   Eigen::Vector3d reach_centre_ = Eigen::Vector3d::Zero();  // update_reach()
   double reach_ = 1.0;
   int runaway_steps_ = 0;                            // steps redone as plain ARAP since the set-up or reset
