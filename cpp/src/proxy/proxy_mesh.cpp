@@ -98,32 +98,36 @@ Vector3d closest_barycentric(const Vector3d& p, const Vector3d& a, const Vector3
   return {1 - v - w, v, w};
 }
 
+// A collapse kills a face by setting its first corner to -1: the face's own load says whether it
+// lives, where a separate flag would cost a second random read (the passes wait on memory: perf).
+inline bool live(const std::array<int, 3>& t) { return t[0] >= 0; }
+
 // Vertex -> incident faces (indices into `faces`, live ones only) in CSR form.
-void vertex_faces(int nv, const std::vector<std::array<int, 3>>& faces, const std::vector<char>& alive,
+void vertex_faces(int nv, const std::vector<std::array<int, 3>>& faces,
                   std::vector<int>& start, std::vector<int>& list) {
   start.assign(nv + 1, 0);
   for (size_t f = 0; f < faces.size(); ++f)
-    if (alive[f])
+    if (live(faces[f]))
       for (int k = 0; k < 3; ++k) ++start[faces[f][k] + 1];
   for (int i = 0; i < nv; ++i) start[i + 1] += start[i];
   list.resize(start[nv]);
   std::vector<int> fill(start.begin(), start.end() - 1);
   for (size_t f = 0; f < faces.size(); ++f)
-    if (alive[f])
+    if (live(faces[f]))
       for (int k = 0; k < 3; ++k) list[fill[faces[f][k]]++] = static_cast<int>(f);
 }
 
 // The ring of u: (neighbour, faces on edge u-neighbour) sorted by neighbour, from u's faces fs[0, count)
-// that are alive. Returns false if they do not form one manifold fan (an edge in more than two faces,
+// that live. Returns false if they do not form one manifold fan (an edge in more than two faces,
 // or more than one boundary).
-bool ring_of(int u, const std::vector<std::array<int, 3>>& faces, const std::vector<char>& alive, const int* fs,
+bool ring_of(int u, const std::vector<std::array<int, 3>>& faces, const int* fs,
              int count, std::vector<std::pair<int, int>>& ring, bool& boundary) {
   ring.clear();
-  int live = 0;
+  int fan = 0;  // u's live faces
   for (int i = 0; i < count; ++i) {
-    if (!alive[fs[i]]) continue;
-    ++live;
     const auto& t = faces[fs[i]];
+    if (!live(t)) continue;
+    ++fan;
     for (int k = 0; k < 3; ++k)
       if (t[k] != u) ring.push_back({t[k], 1});
   }
@@ -149,10 +153,10 @@ bool ring_of(int u, const std::vector<std::array<int, 3>>& faces, const std::vec
     if (r.second == 1) ++boundary_edges;
   }
   boundary = boundary_edges > 0;
-  if (live == 0) return false;
+  if (fan == 0) return false;
   // A single fan: as many faces as neighbours (closed), or one fewer with two boundary edges (open).
-  if (boundary_edges == 0) return live == static_cast<int>(ring.size());
-  return boundary_edges == 2 && live == static_cast<int>(ring.size()) - 1;
+  if (boundary_edges == 0) return fan == static_cast<int>(ring.size());
+  return boundary_edges == 2 && fan == static_cast<int>(ring.size()) - 1;
 }
 
 }  // namespace
@@ -185,12 +189,11 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
     faces.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
   }
   if (faces.empty()) throw std::invalid_argument("the mesh has no face with three different vertices");
-  std::vector<char> alive(faces.size(), 1);
 
   // Quadrics: every face's plane weighted by its area, boundary edges' perpendicular planes.
   std::vector<Quadric> Q(nv);
   std::vector<int> start, list;
-  vertex_faces(nv, faces, alive, start, list);
+  vertex_faces(nv, faces, start, list);
   for (const auto& t : faces) {
     const Vector3d n2 = (X[t[1]] - X[t[0]]).cross(X[t[2]] - X[t[0]]);
     const double area2 = n2.norm();
@@ -206,7 +209,7 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
       bool boundary = false;
       const int count = start[u + 1] - start[u];
       if (count == 0) continue;
-      ring_of(u, faces, alive, &list[start[u]], count, ring, boundary);
+      ring_of(u, faces, &list[start[u]], count, ring, boundary);
       for (const auto& r : ring) {
         if (r.second != 1 || r.first < u) continue;  // each boundary edge once
         // The plane through the edge, perpendicular to its face.
@@ -266,7 +269,7 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
     const auto& ring_u = w.ring_u;
     auto& ring_v = w.ring_v;
     bool boundary_v = false;
-    if (!ring_of(v, faces, alive, &list[start[v]], start[v + 1] - start[v], ring_v, boundary_v)) return false;
+    if (!ring_of(v, faces, &list[start[v]], start[v + 1] - start[v], ring_v, boundary_v)) return false;
     if (!inside(ring_v, chunk)) return false;
     int common = 0, opposite = 0;
     for (size_t i = 0, j = 0; i < ring_u.size() && j < ring_v.size();) {
@@ -282,14 +285,14 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
     }
     for (int i = start[u]; i < start[u + 1]; ++i) {
       const auto& t = faces[list[i]];
-      opposite += alive[list[i]] && (t[0] == v || t[1] == v || t[2] == v);
+      opposite += live(t) && (t[0] == v || t[1] == v || t[2] == v);
     }
     if (common != opposite) return false;
     // A part that is a tetrahedron (or a lone triangle) keeps its vertices.
     if (ring_u.size() + ring_v.size() <= static_cast<size_t>(boundary_u ? 4 : 6)) return false;
     for (int i = start[u]; i < start[u + 1]; ++i) {
-      if (!alive[list[i]]) continue;
       const auto& t = faces[list[i]];
+      if (!live(t)) continue;
       if (t[0] == v || t[1] == v || t[2] == v) continue;
       Vector3d before[3], after[3];
       int others[2], m = 0;
@@ -305,8 +308,8 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
       const double s1 = shape(after[0], after[1], after[2]);
       if (s1 < kMinShape && s1 < shape(before[0], before[1], before[2])) return false;
       for (int j = start[v]; j < start[v + 1]; ++j) {  // would (v, x, y) exist twice?
-        if (!alive[list[j]]) continue;
         const auto& g = faces[list[j]];
+        if (!live(g)) continue;
         const bool has_x = g[0] == others[0] || g[1] == others[0] || g[2] == others[0];
         const bool has_y = g[0] == others[1] || g[1] == others[1] || g[2] == others[1];
         if (has_x && has_y) return false;
@@ -325,7 +328,7 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
       if (made >= budget) break;
       const int u = c.u;
       bool boundary_u = false;
-      if (locked[u] || !ring_of(u, faces, alive, &list[start[u]], start[u + 1] - start[u], w.ring_u, boundary_u))
+      if (locked[u] || !ring_of(u, faces, &list[start[u]], start[u + 1] - start[u], w.ring_u, boundary_u))
         continue;
       if (!inside(w.ring_u, chunk)) {
         border->push_back(c);
@@ -354,10 +357,10 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
         continue;
       }
       for (int i = start[u]; i < start[u + 1]; ++i) {
-        if (!alive[list[i]]) continue;
         auto& t = faces[list[i]];
+        if (!live(t)) continue;
         if (t[0] == v || t[1] == v || t[2] == v) {
-          alive[list[i]] = 0;
+          t[0] = -1;
           continue;
         }
         for (int k = 0; k < 3; ++k)
@@ -379,11 +382,10 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
     {
       size_t kept = 0;
       for (size_t f = 0; f < faces.size(); ++f)
-        if (alive[f]) faces[kept++] = faces[f];
+        if (live(faces[f])) faces[kept++] = faces[f];
       faces.resize(kept);
-      alive.assign(kept, 1);
     }
-    vertex_faces(nv, faces, alive, start, list);
+    vertex_faces(nv, faces, start, list);
     // Every vertex's cheapest partner, in parallel (each thread its own ring buffer): the pass's order.
     parallel::for_ranges(nv, parallel::kMinParallelItems, [&](int begin, int end) {
       std::vector<std::pair<int, int>> ring;
@@ -391,7 +393,7 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
         best[u] = {HUGE_VAL, u, -1};
         const int count = start[u + 1] - start[u];
         bool boundary = false;
-        if (count == 0 || !ring_of(u, faces, alive, &list[start[u]], count, ring, boundary)) continue;
+        if (count == 0 || !ring_of(u, faces, &list[start[u]], count, ring, boundary)) continue;
         for (const auto& r : ring) {
           if (boundary && r.second != 1) continue;  // a boundary vertex moves only along its boundary
           Quadric q = Q[u];
@@ -439,7 +441,7 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
   ProxyMesh proxy;
   std::vector<int> proxy_of(nv, -1);
   for (size_t f = 0; f < faces.size(); ++f)
-    if (alive[f])
+    if (live(faces[f]))
       for (int k = 0; k < 3; ++k) proxy_of[faces[f][k]] = 0;
   for (int i = 0; i < nv; ++i)
     if (proxy_of[i] == 0) {
@@ -448,7 +450,7 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
       proxy.fine_of_proxy.push_back(i);
     }
   for (size_t f = 0; f < faces.size(); ++f)
-    if (alive[f])
+    if (live(faces[f]))
       proxy.faces.push_back({proxy_of[faces[f][0]], proxy_of[faces[f][1]], proxy_of[faces[f][2]]});
 
   // Each fine vertex's proxy vertex: the end of its chain of collapses (chains are short-cut).
@@ -460,9 +462,8 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
   }
   // Proxy vertex -> its faces and its neighbours' faces (the two-ring), sorted and unique.
   const int np = static_cast<int>(proxy.vertices.size());
-  std::vector<char> proxy_alive(proxy.faces.size(), 1);
   std::vector<int> pstart, plist;
-  vertex_faces(np, proxy.faces, proxy_alive, pstart, plist);
+  vertex_faces(np, proxy.faces, pstart, plist);
   std::vector<int> two_start(np + 1, 0), two_list;
   {
     std::vector<int> gathered;
