@@ -190,48 +190,54 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
   }
   if (faces.empty()) throw std::invalid_argument("the mesh has no face with three different vertices");
 
-  // Quadrics: every face's plane weighted by its area, boundary edges' perpendicular planes.
+  // Quadrics: every face's plane weighted by its area, boundary edges' perpendicular planes. Each
+  // vertex gathers its own (in parallel, the serial scatter was a tenth of the time at 2M), adding
+  // them in the order the scatter did: its faces by index, then its boundary edges by the other end.
   std::vector<Quadric> Q(nv);
   std::vector<int> start, list;
   vertex_faces(nv, faces, start, list);
-  for (const auto& t : faces) {
+  const auto face_plane = [&](const std::array<int, 3>& t, Quadric& q) {
     const Vector3d n2 = (X[t[1]] - X[t[0]]).cross(X[t[2]] - X[t[0]]);
     const double area2 = n2.norm();
-    if (!(area2 > 0)) continue;
+    if (!(area2 > 0)) return false;
     const Vector3d n = n2 / area2;
-    Quadric q;
     q.add_plane(n, -n.dot(X[t[0]]), 0.5 * area2);
-    for (int k = 0; k < 3; ++k) Q[t[k]].add(q);
-  }
-  {
+    return true;
+  };
+  // The plane through boundary edge u-v (u < v), perpendicular to u's first face on it.
+  const auto edge_plane = [&](int u, int v, Quadric& q) {
+    for (int i = start[u]; i < start[u + 1]; ++i) {
+      const auto& t = faces[list[i]];
+      if (t[0] != v && t[1] != v && t[2] != v) continue;
+      const Vector3d normal = (X[t[1]] - X[t[0]]).cross(X[t[2]] - X[t[0]]);
+      const Vector3d edge = X[v] - X[u];
+      Vector3d n = edge.cross(normal);
+      const double len = n.norm();
+      if (!(len > 0)) return false;
+      n /= len;
+      q.add_plane(n, -n.dot(X[u]), kBoundaryWeight * edge.squaredNorm());
+      return true;
+    }
+    return false;
+  };
+  parallel::for_ranges(nv, parallel::kMinParallelItems, [&](int begin, int end) {
     std::vector<std::pair<int, int>> ring;
-    for (int u = 0; u < nv; ++u) {
-      bool boundary = false;
-      const int count = start[u + 1] - start[u];
+    for (int x = begin; x < end; ++x) {
+      const int count = start[x + 1] - start[x];
       if (count == 0) continue;
-      ring_of(u, faces, &list[start[u]], count, ring, boundary);
+      for (int i = start[x]; i < start[x + 1]; ++i) {
+        Quadric q;
+        if (face_plane(faces[list[i]], q)) Q[x].add(q);
+      }
+      bool boundary = false;
+      ring_of(x, faces, &list[start[x]], count, ring, boundary);
       for (const auto& r : ring) {
-        if (r.second != 1 || r.first < u) continue;  // each boundary edge once
-        // The plane through the edge, perpendicular to its face.
-        const int v = r.first;
-        for (int i = start[u]; i < start[u + 1]; ++i) {
-          const auto& t = faces[list[i]];
-          if (t[0] != v && t[1] != v && t[2] != v) continue;
-          const Vector3d normal = (X[t[1]] - X[t[0]]).cross(X[t[2]] - X[t[0]]);
-          const Vector3d edge = X[v] - X[u];
-          Vector3d n = edge.cross(normal);
-          const double len = n.norm();
-          if (!(len > 0)) break;
-          n /= len;
-          Quadric q;
-          q.add_plane(n, -n.dot(X[u]), kBoundaryWeight * edge.squaredNorm());
-          Q[u].add(q);
-          Q[v].add(q);
-          break;
-        }
+        if (r.second != 1) continue;
+        Quadric q;
+        if (edge_plane(std::min(x, r.first), std::max(x, r.first), q)) Q[x].add(q);
       }
     }
-  }
+  });
 
   std::vector<int> into(nv, -1);  // the vertex each collapsed vertex went into
   int remaining = 0;
