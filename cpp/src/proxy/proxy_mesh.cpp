@@ -253,8 +253,8 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
   // chunks are fixed by the mesh, never by the thread count, so the proxy is the same for any.
   std::vector<int> chunk_of(nv, 0);
   if (nv >= kChunks * kMinChunk) {
-    std::vector<int> rank, face_order;
-    spatial_order(V, nv, F, num_faces, rank, face_order);
+    std::vector<int> rank;
+    spatial_vertex_order(V, nv, rank);
     for (int i = 0; i < nv; ++i) chunk_of[i] = static_cast<int>(static_cast<int64_t>(rank[i]) * kChunks / nv);
   }
   // Is every vertex of `ring` in chunk `chunk` (-1: the serial sweep, anything goes)?
@@ -470,11 +470,11 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
   const int np = static_cast<int>(proxy.vertices.size());
   std::vector<int> pstart, plist;
   vertex_faces(np, proxy.faces, pstart, plist);
-  std::vector<int> two_start(np + 1, 0), two_list;
-  {
-    std::vector<int> gathered;
-    for (int p = 0; p < np; ++p) {
-      gathered.clear();
+  // Gathered in parallel, each proxy vertex's into its own list, then joined in order.
+  std::vector<std::vector<int>> two_ring(np);
+  parallel::for_ranges(np, parallel::kMinParallelItems, [&](int begin, int end) {
+    for (int p = begin; p < end; ++p) {
+      std::vector<int>& gathered = two_ring[p];
       for (int i = pstart[p]; i < pstart[p + 1]; ++i)
         for (int k = 0; k < 3; ++k) {
           const int q = proxy.faces[plist[i]][k];
@@ -482,9 +482,14 @@ ProxyMesh proxy_mesh(const double* V, int num_vertices, const int64_t* F, int nu
         }
       std::sort(gathered.begin(), gathered.end());
       gathered.erase(std::unique(gathered.begin(), gathered.end()), gathered.end());
-      two_list.insert(two_list.end(), gathered.begin(), gathered.end());
-      two_start[p + 1] = static_cast<int>(two_list.size());
     }
+  });
+  std::vector<int> two_start(np + 1, 0), two_list;
+  for (int p = 0; p < np; ++p) two_start[p + 1] = two_start[p] + static_cast<int>(two_ring[p].size());
+  two_list.reserve(two_start[np]);
+  for (auto& gathered : two_ring) {
+    two_list.insert(two_list.end(), gathered.begin(), gathered.end());
+    std::vector<int>().swap(gathered);
   }
   proxy.fine_face.assign(nv, -1);
   proxy.fine_bary.assign(nv, {0.f, 0.f});
