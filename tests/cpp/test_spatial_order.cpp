@@ -58,6 +58,10 @@ TEST(SpatialOrder, GridVerticesFollowTheZOrderCurve) {
   gauss::spatial_order(V.data(), n, F.data(), 300, new_of_old, face_order);
   ASSERT_TRUE(is_permutation(new_of_old, n));
   ASSERT_TRUE(is_permutation(face_order, 300));
+  // The vertices' numbering alone (what the proxy uses) is spatial_order's.
+  std::vector<int> alone;
+  gauss::spatial_vertex_order(V.data(), n, alone);
+  EXPECT_EQ(alone, new_of_old);
 
   // On the Z-order curve every aligned run of 8^j consecutive vertices fills an aligned cube of side
   // 2^j (j = 1, 2), and the curve starts at the lowest corner.
@@ -95,6 +99,9 @@ TEST(SpatialOrder, DegeneratePositionsStillGivePermutations) {
   gauss::spatial_order(same.data(), n, F.data(), 60, new_of_old, face_order);
   ASSERT_TRUE(is_permutation(new_of_old, n));
   for (int v = 0; v < n; ++v) EXPECT_EQ(new_of_old[v], v);
+  std::vector<int> alone;
+  gauss::spatial_vertex_order(same.data(), n, alone);
+  EXPECT_EQ(alone, new_of_old);  // ties keep the given order there too
   ASSERT_TRUE(is_permutation(face_order, 60));
   // NaN and infinite coordinates, and huge finite ones whose extent overflows unless halved.
   std::vector<double> odd(3 * n);

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <utility>
 
 namespace gauss {
 namespace {
@@ -19,15 +19,15 @@ uint64_t spread_bits(uint64_t x) {  // 21 bits -> every third bit of 63
 
 }  // namespace
 
-void spatial_order(const double* V, int nV, const int64_t* F, int nF, std::vector<int>& new_of_old,
-                   std::vector<int>& face_order) {
+void spatial_vertex_order(const double* V, int nV, std::vector<int>& new_of_old) {
   double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   for (int v = 0; v < nV; ++v)
     for (int k = 0; k < 3; ++k) {
       lo[k] = std::min(lo[k], V[3 * v + k]);
       hi[k] = std::max(hi[k], V[3 * v + k]);
     }
-  std::vector<uint64_t> code(nV);
+  // (code, vertex) pairs sorted: the stable sort by code, without the indirection through code[].
+  std::vector<std::pair<uint64_t, int>> code(nV);
   for (int v = 0; v < nV; ++v) {
     uint64_t c = 0;
     for (int k = 0; k < 3; ++k) {
@@ -37,20 +37,23 @@ void spatial_order(const double* V, int nV, const int64_t* F, int nF, std::vecto
       const double t = ext > 0 ? (0.5 * V[3 * v + k] - 0.5 * lo[k]) / ext : 0.0;
       c |= spread_bits(static_cast<uint64_t>((t > 0 ? std::min(t, 1.0) : 0.0) * 2097151.0)) << k;
     }
-    code[v] = c;
+    code[v] = {c, v};
   }
-  std::vector<int> old_of_new(nV);
-  std::iota(old_of_new.begin(), old_of_new.end(), 0);
-  std::stable_sort(old_of_new.begin(), old_of_new.end(), [&](int a, int b) { return code[a] < code[b]; });
+  std::sort(code.begin(), code.end());
   new_of_old.resize(nV);
-  for (int i = 0; i < nV; ++i) new_of_old[old_of_new[i]] = i;
+  for (int i = 0; i < nV; ++i) new_of_old[code[i].second] = i;
+}
 
-  std::vector<int> first(nF);
+void spatial_order(const double* V, int nV, const int64_t* F, int nF, std::vector<int>& new_of_old,
+                   std::vector<int>& face_order) {
+  spatial_vertex_order(V, nV, new_of_old);
+
+  std::vector<std::pair<int, int>> first(nF);  // (first vertex, face): sorted, ties in face order
   for (int f = 0; f < nF; ++f)
-    first[f] = std::min({new_of_old[F[3 * f]], new_of_old[F[3 * f + 1]], new_of_old[F[3 * f + 2]]});
+    first[f] = {std::min({new_of_old[F[3 * f]], new_of_old[F[3 * f + 1]], new_of_old[F[3 * f + 2]]}), f};
+  std::sort(first.begin(), first.end());
   face_order.resize(nF);
-  std::iota(face_order.begin(), face_order.end(), 0);
-  std::stable_sort(face_order.begin(), face_order.end(), [&](int a, int b) { return first[a] < first[b]; });
+  for (int f = 0; f < nF; ++f) face_order[f] = first[f].second;
 }
 
 }  // namespace gauss

@@ -12,4 +12,7 @@ namespace gauss {
 void spatial_order(const double* V, int num_vertices, const int64_t* F, int num_faces,
                    std::vector<int>& new_of_old_vertex, std::vector<int>& face_order);
 
+// The vertices' numbering alone (spatial_order's first output), for callers that keep their faces.
+void spatial_vertex_order(const double* V, int num_vertices, std::vector<int>& new_of_old_vertex);
+
 }  // namespace gauss
