@@ -169,7 +169,7 @@ TEST(ContactSprings, WithoutAContactTheyLeaveNoTrace) {
 TEST(ContactSprings, PlatesPressedTogetherGoOnTurningFlat) {
   // Without the guard the plates pass through each other and turn flat (share 1.0). The guard alone
   // held the pressed ends and with them both plates (share 0.543 when written); with the springs the
-  // global step knows of the contact, and the plates turn flat but for the contact (0.939).
+  // global step knows of the contact, and the plates turn flat but for the contact (0.939 on Linux).
   const gauss::TriangleMesh m = plates();
   ASSERT_EQ(gauss::count_self_intersections(faces_of(m), points_of(m.V)), 0);
   const Outcome through = stylize(m, false, gauss::ContactSprings::kDefaultStiffness);
@@ -181,5 +181,8 @@ TEST(ContactSprings, PlatesPressedTogetherGoOnTurningFlat) {
   const Outcome springs = stylize(m, true, gauss::ContactSprings::kDefaultStiffness);
   EXPECT_EQ(springs.crossings, 0);
   EXPECT_GT(springs.springs_max, 0);
-  EXPECT_GT(springs.share, through.share - 0.1);
+  // The margins leave room for the platforms' maths libraries (the Windows build's cos and exp take
+  // this run elsewhere: 0.85 there, 0.94 on Linux); the guard alone stays far below either.
+  EXPECT_GT(springs.share, alone.share + 0.2);
+  EXPECT_GT(springs.share, through.share - 0.2);
 }
