@@ -28,28 +28,38 @@ def _bunny(addon, threshold=THRESHOLD):
     return obj
 
 
+def _tick_until(done, tick, what="the run did not get there in time"):
+    """Calls ``tick`` (a tick of the run, as the modal operator's timer gives them) until ``done()``,
+    within LIMIT seconds: the proxy's steps run on a worker, so a tick returns at once."""
+    deadline = time.monotonic() + LIMIT
+    while not done():
+        assert time.monotonic() < deadline, what
+        tick()
+        time.sleep(0.001)
+
+
+def _no_stop(outcome):
+    assert outcome.stopped == []
+
+
 def _live(live, steps=LIVE_TICKS):
-    """Ticks, as the modal operator's timer gives them, until the run on a proxy has taken ``steps``
-    more steps (its steps run on a worker: a tick waits for none) or has come to rest."""
+    """Ticks until the run on a proxy has taken ``steps`` more steps or has come to rest."""
     session = live.sessions[0]
     wanted = session.steps + steps
-    deadline = time.monotonic() + LIMIT
-    while session.steps < wanted and not (session.at_rest and not session.stepping):
-        assert time.monotonic() < deadline, "the run did not step in time"
-        assert live.tick().stopped == []
-        time.sleep(0.001)
+    _tick_until(lambda: session.steps >= wanted or (session.at_rest and not session.stepping),
+                lambda: _no_stop(live.tick()), "the run did not step in time")
+
+
+def _pin_the_bottom(obj, start):
+    """A Pin Group of the bunny's lowest tenth."""
+    helpers.add_group(obj, "Pins", np.flatnonzero(start[:, 2] - start[:, 2].min() < 0.1 * np.ptp(start[:, 2])))
+    obj.gauss_stylization.pin_group = "Pins"
 
 
 def _finish(live):
     """Enter on the run: the finish at full resolution, ticked until it has converged."""
     assert live.start_finish()
-    deadline = time.monotonic() + LIMIT
-    while not live.finished:
-        assert time.monotonic() < deadline, "the finish did not converge in time"
-        outcome = live.finish_tick()
-        assert outcome.stopped == []
-        if live.finish_setup_job is not None:
-            time.sleep(0.01)
+    _tick_until(lambda: live.finished, lambda: _no_stop(live.finish_tick()), "the finish did not converge in time")
 
 
 class GatedSolver:
@@ -95,15 +105,10 @@ def _gated_run(obj):
 
 def _hold_a_step(live, session, gated):
     """Tick until a step runs on the worker and waits at the closed gate (the ticks return meanwhile)."""
-    while session.stepping:
-        time.sleep(0.001)
+    _tick_until(lambda: not session.stepping, lambda: None)
     gated.gate.clear()
     gated.entered.clear()
-    deadline = time.monotonic() + LIMIT
-    while not gated.entered.is_set():
-        assert time.monotonic() < deadline
-        live.tick()
-        time.sleep(0.001)
+    _tick_until(gated.entered.is_set, live.tick)
     assert session.stepping and not gated.waited_out
 
 
@@ -168,9 +173,8 @@ def test_cancel_restores_the_mesh_exactly_live_and_while_finishing(addon):
     live = helpers.live_run([obj])
     _live(live)
     assert live.start_finish()
-    while live.finish_setup_job is not None:  # Esc once the finish has stepped at full resolution
-        live.finish_tick()
-        time.sleep(0.01)
+    # Esc once the finish has stepped at full resolution
+    _tick_until(lambda: live.finish_setup_job is None, live.finish_tick)
     live.finish_tick()
     assert not np.array_equal(helpers.coords(obj), start)
     live.cancel()
@@ -285,8 +289,7 @@ def test_a_tick_on_a_proxy_starts_the_step_on_a_worker_and_does_not_wait_for_it(
 def test_changes_made_while_a_proxy_step_runs_reach_the_solver_after_it_in_order(addon):
     obj = _bunny(addon)
     start = helpers.coords(obj)
-    helpers.add_group(obj, "Pins", np.flatnonzero(start[:, 2] - start[:, 2].min() < 0.1 * np.ptp(start[:, 2])))
-    obj.gauss_stylization.pin_group = "Pins"
+    _pin_the_bottom(obj, start)
     live, session, gated = _gated_run(obj)
     _live(live, 3)
     _hold_a_step(live, session, gated)
@@ -302,9 +305,7 @@ def test_changes_made_while_a_proxy_step_runs_reach_the_solver_after_it_in_order
     assert np.array_equal(np.asarray(gated._inner.pin_positions), rest)
     steps = session.steps
     gated.gate.set()
-    while session.steps == steps:
-        live.tick()
-        time.sleep(0.001)
+    _tick_until(lambda: session.steps != steps, live.tick)
     assert not gated.waited_out
     assert gated._inner.lam == 2.5
     assert np.allclose(gated._inner.pin_positions, rest + 2 * shift)
@@ -336,14 +337,9 @@ def test_a_proxy_step_that_raises_stops_its_object_with_the_error(addon):
     live, session, gated = _gated_run(obj)
     _live(live, 2)
     gated.fail_with(RuntimeError("the factor broke"))
-    deadline = time.monotonic() + LIMIT
-    while True:
-        assert time.monotonic() < deadline
-        outcome = live.tick()
-        if outcome.stopped:
-            break
-        time.sleep(0.001)
-    assert outcome.stopped == [(session, "the factor broke")]
+    outcomes = []
+    _tick_until(lambda: outcomes and outcomes[-1].stopped, lambda: outcomes.append(live.tick()))
+    assert outcomes[-1].stopped == [(session, "the factor broke")]
     assert live.sessions == [] and session.stepper is None
     assert np.array_equal(helpers.coords(obj), start)
 
@@ -382,11 +378,7 @@ def test_weight_paint_entered_while_a_proxy_step_runs_holds_the_mesh_still(addon
         helpers.bpy.ops.object.mode_set(mode='WEIGHT_PAINT')  # the strokes must land where it is shown
         gated.gate.set()
         steps = session.steps
-        deadline = time.monotonic() + LIMIT
-        while session.steps == steps or session.stepping:
-            assert time.monotonic() < deadline
-            live.tick()
-            time.sleep(0.001)
+        _tick_until(lambda: session.steps != steps and not session.stepping, live.tick)
         for _ in range(5):
             live.tick()
         assert np.array_equal(helpers.coords(obj), shown) and not session.stepping
@@ -400,8 +392,7 @@ def test_weight_paint_entered_while_a_proxy_step_runs_holds_the_mesh_still(addon
 def test_a_handle_move_the_solver_refuses_after_a_proxy_step_makes_the_handles_stale(addon):
     obj = _bunny(addon)
     start = helpers.coords(obj)
-    helpers.add_group(obj, "Pins", np.flatnonzero(start[:, 2] - start[:, 2].min() < 0.1 * np.ptp(start[:, 2])))
-    obj.gauss_stylization.pin_group = "Pins"
+    _pin_the_bottom(obj, start)
     live, session, gated = _gated_run(obj)
     _live(live, 2)
     handles = addon.handles.handles.Handles(session)
@@ -411,9 +402,7 @@ def test_a_handle_move_the_solver_refuses_after_a_proxy_step_makes_the_handles_s
     assert handles.current()
     gated.gate.set()
     steps = session.steps
-    while session.steps == steps:
-        live.tick()
-        time.sleep(0.001)
+    _tick_until(lambda: session.steps != steps, live.tick)
     assert not handles.current()  # rebuilt from the solver, which kept its targets
     assert np.array_equal(np.asarray(gated._inner.pin_positions), rest)
     assert np.array_equal(addon.handles.handles.Handles(session).targets, rest)
