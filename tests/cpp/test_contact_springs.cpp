@@ -18,30 +18,16 @@
 #include "gauss/style/presets.h"
 #include "test_meshes.h"
 
+// Each test file in a namespace of its own: a unity build (CMAKE_UNITY_BUILD) compiles several in one
+// translation unit, where the helpers of different files would clash.
+namespace test_contact_springs {
+
 using Eigen::Vector3d;
 using gauss::GaussSolver;
 using gauss_test::faces_of;
 using gauss_test::points_of;
 
 namespace {
-
-// Two thin plates (grid_cube(4) squashed to 1 x 0.05 x 0.3) leaning towards each other like an upside
-// down V, their near ends 0.08 apart: the cube style turns each flat, which swings their near ends
-// into each other (test_self_intersection_guard.cpp has the same pair at n = 2).
-gauss::TriangleMesh plates() {
-  gauss::TriangleMesh out;
-  for (const double side : {-1.0, 1.0}) {
-    gauss::TriangleMesh m = gauss_test::grid_cube(4);
-    const Eigen::Matrix3d turn = Eigen::AngleAxisd(-side * 35 * M_PI / 180, Vector3d::UnitZ()).toRotationMatrix();
-    const int64_t offset = out.num_vertices();
-    for (int v = 0; v < m.num_vertices(); ++v) {
-      const Vector3d p = turn * Vector3d(0.5 * m.V[3 * v], 0.025 * m.V[3 * v + 1], 0.15 * m.V[3 * v + 2]);
-      out.V.insert(out.V.end(), {p.x() + side * 0.45, p.y(), p.z()});
-    }
-    for (int64_t i : m.F) out.F.push_back(i + offset);
-  }
-  return out;
-}
 
 struct Outcome {
   double share;
@@ -170,7 +156,7 @@ TEST(ContactSprings, PlatesPressedTogetherGoOnTurningFlat) {
   // Without the guard the plates pass through each other and turn flat (share 1.0). The guard alone
   // held the pressed ends and with them both plates (share 0.543 when written); with the springs the
   // global step knows of the contact, and the plates turn flat but for the contact (0.939 on Linux).
-  const gauss::TriangleMesh m = plates();
+  const gauss::TriangleMesh m = gauss_test::leaning_plates(4);
   ASSERT_EQ(gauss::count_self_intersections(faces_of(m), points_of(m.V)), 0);
   const Outcome through = stylize(m, false, gauss::ContactSprings::kDefaultStiffness);
   EXPECT_GT(through.crossings, 0) << "the case does not press the plates together";
@@ -186,3 +172,5 @@ TEST(ContactSprings, PlatesPressedTogetherGoOnTurningFlat) {
   EXPECT_GT(springs.share, alone.share + 0.2);
   EXPECT_GT(springs.share, through.share - 0.2);
 }
+
+}  // namespace test_contact_springs

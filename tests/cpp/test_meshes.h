@@ -1,6 +1,7 @@
 #pragma once
 // Meshes the C++ tests build in code, so the suite does not depend on ../shared for its core checks.
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cmath>
 #include <map>
@@ -82,6 +83,25 @@ inline gauss::TriangleMesh beside(const gauss::TriangleMesh& a, const gauss::Tri
   for (size_t i = 0; i < b.V.size(); ++i) m.V.push_back(b.V[i] + (i % 3 == 0 ? 3.0 : 0.0));
   for (int64_t i : b.F) m.F.push_back(i + offset);
   return m;
+}
+
+// Two thin plates (grid_cube(n) squashed to 1 x 0.05 x 0.3) leaning towards each other like an upside
+// down V, their near ends 0.08 apart: a style that turns each flat swings their near ends into each
+// other (the guard's and the contact springs' tests).
+inline gauss::TriangleMesh leaning_plates(int n) {
+  gauss::TriangleMesh out;
+  for (const double side : {-1.0, 1.0}) {
+    gauss::TriangleMesh m = grid_cube(n);
+    const Eigen::Matrix3d turn =
+        Eigen::AngleAxisd(-side * 35 * M_PI / 180, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const int64_t offset = out.num_vertices();
+    for (int v = 0; v < m.num_vertices(); ++v) {
+      const Eigen::Vector3d p = turn * Eigen::Vector3d(0.5 * m.V[3 * v], 0.025 * m.V[3 * v + 1], 0.15 * m.V[3 * v + 2]);
+      out.V.insert(out.V.end(), {p.x() + side * 0.45, p.y(), p.z()});
+    }
+    for (int64_t i : m.F) out.F.push_back(i + offset);
+  }
+  return out;
 }
 
 inline std::string shared_mesh(const std::string& rel) { return std::string(GAUSS_MESH_DIR) + "/" + rel; }

@@ -27,24 +27,6 @@ int64_t crossings(const gauss::TriangleMesh& m, const std::vector<double>& V) {
   return gauss::count_self_intersections(faces_of(m), points_of(V));
 }
 
-// Two thin plates (grid_cube(n) squashed to 1 x 0.05 x 0.3) leaning towards each other like an upside
-// down V, their near ends 0.08 apart: a style that turns each flat swings their near ends into each
-// other (test_self_intersection.cpp has the same pair at n = 2).
-gauss::TriangleMesh plates(int n) {
-  gauss::TriangleMesh out;
-  for (const double side : {-1.0, 1.0}) {
-    gauss::TriangleMesh m = gauss_test::grid_cube(n);
-    const Eigen::Matrix3d turn = Eigen::AngleAxisd(-side * 35 * M_PI / 180, Vector3d::UnitZ()).toRotationMatrix();
-    const int64_t offset = out.num_vertices();
-    for (int v = 0; v < m.num_vertices(); ++v) {
-      const Vector3d p = turn * Vector3d(0.5 * m.V[3 * v], 0.025 * m.V[3 * v + 1], 0.15 * m.V[3 * v + 2]);
-      out.V.insert(out.V.end(), {p.x() + side * 0.45, p.y(), p.z()});
-    }
-    for (int64_t i : m.F) out.F.push_back(i + offset);
-  }
-  return out;
-}
-
 std::vector<double> vertices(const GaussSolver& s) {
   std::vector<double> out(3 * static_cast<size_t>(s.num_vertices()));
   s.copy_vertices(out.data());
@@ -66,7 +48,7 @@ int run(GaussSolver& s, int steps) {
 TEST(SelfIntersectionGuard, TheCubicMethodMakesNoNewCrossing) {
   // Cubic Stylization turns the plates flat as well: without the guard they pass through each other,
   // with it they end as clean as they began, and it did hold vertices back.
-  const gauss::TriangleMesh m = plates(2);
+  const gauss::TriangleMesh m = gauss_test::leaning_plates(2);
   ASSERT_EQ(crossings(m, m.V), 0);
   for (const bool avoid : {false, true}) {
     SCOPED_TRACE(avoid ? "guarded" : "free");
@@ -90,7 +72,7 @@ TEST(SelfIntersectionGuard, TheCubicMethodMakesNoNewCrossing) {
 TEST(SelfIntersectionGuard, ResetStartsTheGuardFromTheRestMeshAgain) {
   // Set to crossing vertices, the guard allows those crossings; reset() takes the run back to the
   // clean rest mesh, where they are new again: the run after it is the first run, bit for bit, clean.
-  const gauss::TriangleMesh m = plates(2);
+  const gauss::TriangleMesh m = gauss_test::leaning_plates(2);
   const auto solver = [&m] {
     auto s = std::make_unique<GaussSolver>(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), std::vector<int64_t>{},
                                            nullptr, 10.0);
@@ -120,7 +102,7 @@ TEST(SelfIntersectionGuard, SetVerticesIsTheNewStartAsItIs) {
   // Crossing vertices set while the guard is on are taken as they are: the run from them is the run
   // of a solver that was set to them with the guard off and had it switched on there (start_from), bit
   // for bit. Were the old start kept, their crossings would be new, and their corners held.
-  const gauss::TriangleMesh m = plates(2);
+  const gauss::TriangleMesh m = gauss_test::leaning_plates(2);
   GaussSolver free_run(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), {}, nullptr, 10.0);
   free_run.set_styles({gauss::PreferenceFunction(gauss::preset_style("cube"))});
   run(free_run, 60);
@@ -146,7 +128,7 @@ TEST(SelfIntersectionGuard, OneAndTwoThreadsAreBitIdentical) {
   // under the cube style, which folds their thin rims from the third step on (the guard holds about a
   // thousand vertices a step there): the same vertices bit for bit. (The solver picks one thread or
   // both per step by timing; the guard alone on one and two is in test_self_intersection_shortcuts.)
-  const gauss::TriangleMesh m = plates(19);
+  const gauss::TriangleMesh m = gauss_test::leaning_plates(19);
   ASSERT_GT(m.num_faces(), 8192);
   ASSERT_GT(m.num_vertices(), gauss::parallel::kMinParallelItems);
   const int saved = gauss::parallel::max_threads();
