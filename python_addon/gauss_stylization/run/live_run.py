@@ -210,13 +210,8 @@ class LiveRun:
             if session.on_proxy:  # its steps run on a worker: this tick waits for none of them
                 stepped += self._tick_on_proxy(session, outcome)
                 continue
-            problem = session.sync_settings()
-            if problem is not None:
-                if self.paused.get(session) != problem:
-                    outcome.paused.append((session.name, problem))
-                self.paused[session] = problem
+            if not self._sync(session, outcome):
                 continue
-            self.paused.pop(session, None)
             if session.busy is not None:  # the sync began re-factoring for new pins: wait for it
                 continue
             if session.painting:  # held still while its weights are painted; read on the way back
@@ -240,6 +235,18 @@ class LiveRun:
         for session, _why in outcome.stopped:
             self._drop(session)
         return outcome
+
+    def _sync(self, session, outcome):
+        """Bring ``session``'s settings to its solver. False if they cannot run: it pauses, and the
+        outcome says why once (not at every tick)."""
+        problem = session.sync_settings()
+        if problem is None:
+            self.paused.pop(session, None)
+            return True
+        if self.paused.get(session) != problem:
+            outcome.paused.append((session.name, problem))
+        self.paused[session] = problem
+        return False
 
     def _settling_base(self, session):
         """(Tolerance, how far ``session`` had settled) before its next step: 0 after a change."""
@@ -271,17 +278,10 @@ class LiveRun:
                 outcome.stopped.append((session, str(exc)))
                 return 0
             self._settled_after(session, self._proxy_base.pop(session))
-        problem = session.sync_settings()
-        if problem is not None:
-            if self.paused.get(session) != problem:
-                outcome.paused.append((session.name, problem))
-            self.paused[session] = problem
-        else:
-            self.paused.pop(session, None)
-            # Not while new pins are prepared, weights painted, or at rest (as tick() steps).
-            if session.busy is None and not session.painting and not session.at_rest:
-                self._proxy_base[session] = self._settling_base(session)
-                session.start_step()
+        # Not while new pins are prepared, weights painted, or at rest (as tick() steps).
+        if self._sync(session, outcome) and session.busy is None and not session.painting and not session.at_rest:
+            self._proxy_base[session] = self._settling_base(session)
+            session.start_step()
         if not taken or session.painting:  # held still while painted, as tick() holds it: the step taken
             return 0                        # began before, and shows once the strokes are read
         try:
