@@ -164,7 +164,7 @@ int main(int argc, char** argv) {
     const double setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
     if (until_converged) solver.set_tolerance(until);  // held_back() compares with it
-    std::vector<double> step_ms, faces, rotations, admm_ms, rhs, solve, cubic_iterations;
+    std::vector<double> step_ms, faces, rotations, admm_ms, rhs, solve, guard_ms, cubic_iterations;
     std::vector<double> contact_iterations;
     int multi_threaded_steps = 0, held_max = 0, springs_max = 0;
     double total_ms = 0;
@@ -179,6 +179,7 @@ int main(int argc, char** argv) {
       admm_ms.push_back(pt.admm);
       rhs.push_back(pt.rhs);
       solve.push_back(pt.solve);
+      guard_ms.push_back(pt.guard);
       multi_threaded_steps += pt.threads > 1;
       held_max = std::max(held_max, solver.held_vertices());
       springs_max = std::max(springs_max, solver.contact_springs());
@@ -197,6 +198,7 @@ int main(int argc, char** argv) {
     std::printf("phase_admm_ms_median: %.3f\n", median(admm_ms));
     std::printf("phase_rhs_ms_median: %.3f\n", median(rhs));
     std::printf("phase_solve_ms_median: %.3f\n", median(solve));
+    if (avoid_self_intersections) std::printf("phase_guard_ms_median: %.3f\n", median(guard_ms));
     if (cubic) std::printf("cubic_admm_iterations_per_vertex_median: %.3f\n", median(cubic_iterations));
     std::printf("last_reldv: %.4g\n", solver.last_reldv());
     std::printf("held_vertices_last_step: %d\n", solver.held_vertices());

@@ -364,7 +364,7 @@ By default one style, DEFAULTS['preset'] with the default sigma and mu, applies 
       .def_property_readonly("last_step_ms", [](Solver& s) {
              const gauss::StepTimings& t = s.core().last_timings();
              py::dict d;
-             d["faces"] = t.faces; d["rotations"] = t.rotations; d["admm"] = t.admm; d["rhs"] = t.rhs; d["solve"] = t.solve; d["threads"] = t.threads;
+             d["faces"] = t.faces; d["rotations"] = t.rotations; d["admm"] = t.admm; d["rhs"] = t.rhs; d["solve"] = t.solve; d["guard"] = t.guard; d["threads"] = t.threads;
              return d;
            }, "Milliseconds per phase of the last step.");
   gauss_python::bind_iteration(cls);

@@ -478,7 +478,11 @@ void GaussSolver::step() {
       ++runaway_steps_;
     }
     if (keep_volume_) volume_.restore(topo_, X_);
-    if (guard_) guard_->limit(safe_, X_);
+    if (guard_) {
+      const auto guard_start = Clock::now();
+      guard_->limit(safe_, X_);
+      timings_.guard = ms_since(guard_start);
+    }
   };
   if (method_ == Method::cubic) iteration_.advance(X_, cubic_.carried_state(), rest_, 1.0, map);
   else iteration_.advance(X_, rest_, 1.0, map);

@@ -48,8 +48,8 @@ struct StepTimings {  // milliseconds spent in each phase of the last step
   // faces: initialization with the first ADMM round's normal update; admm: the edge update and any
   // later rounds; rhs: Eq. 27's right-hand side; solve: the triangular solves and re-centring.
   // The cubic method: faces = the face covariances, admm = the per-vertex ADMM with its rotations,
-  // rotations = 0.
-  double faces = 0, rotations = 0, admm = 0, rhs = 0, solve = 0;
+  // rotations = 0. guard: Avoid Self-Intersections' check of the step's result (0 without it).
+  double faces = 0, rotations = 0, admm = 0, rhs = 0, solve = 0, guard = 0;
   int threads = 1;  // threads the step ran on (see thread_tuner.h and parallel.h)
 };
 
