@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "gauss/util/parallel.h"
@@ -28,6 +29,7 @@ FaceBvh::FaceBvh(const std::vector<std::array<int, 3>>& faces, const std::vector
     if (nodes_[node].left < 0)
       for (int i = nodes_[node].begin; i < nodes_[node].end; ++i) leaf_of_[i] = node;
   find_connected_nodes();
+  node_stamp_.assign(nodes_.size(), 0);
   if (!nodes_.empty()) tasks_ = tasks(kTasks);
 }
 
@@ -112,8 +114,9 @@ int FaceBvh::build(int begin, int end, int parent, const std::vector<Vector3d>& 
 
 int64_t FaceBvh::bytes_needed(int64_t num_faces) {
   // A face's box (24 bytes), its place in the order and back and its leaf (12) and its centroid while
-  // building (24), and per leaf (2 nodes of 44 bytes) a share of the tree.
-  return 60 * num_faces + 2 * 44 * (num_faces / kLeafSize + 1);
+  // building (24), and its area vector (24); per leaf a share of the tree: 2 nodes, each with a stamp
+  // and a place in a list.
+  return 84 * num_faces + 2 * static_cast<int64_t>(sizeof(Node) + 8) * (num_faces / kLeafSize + 1);
 }
 
 void FaceBvh::fit_face(int i, const std::vector<Vector3d>& X, double margin) {
@@ -138,22 +141,28 @@ double angle_between(const Vector3d& a, const Vector3d& b) {
 }
 }  // namespace
 
-void FaceBvh::fit_node(int n) {
+void FaceBvh::fit_node_box(int n) {
   Node& node = nodes_[n];
   if (node.left >= 0) {
+    node.box = nodes_[node.left].box;
+    node.box.merge(nodes_[node.right].box);
+    return;
+  }
+  node.box = face_box_[node.begin];
+  for (int i = node.begin + 1; i < node.end; ++i) node.box.merge(face_box_[i]);
+}
+
+void FaceBvh::fit_node(int n) {
+  Node& node = nodes_[n];
+  fit_node_box(n);
+  if (node.left >= 0) {
     const Node &l = nodes_[node.left], &r = nodes_[node.right];
-    node.box = l.box;
-    node.box.merge(r.box);
     node.area = l.area + r.area;
     node.angle = std::min(kPi, std::max(angle_between(node.area, l.area) + l.angle,
                                         angle_between(node.area, r.area) + r.angle));
   } else {
-    node.box = face_box_[node.begin];
     node.area = face_area_[node.begin];
-    for (int i = node.begin + 1; i < node.end; ++i) {
-      node.box.merge(face_box_[i]);
-      node.area += face_area_[i];
-    }
+    for (int i = node.begin + 1; i < node.end; ++i) node.area += face_area_[i];
     node.angle = 0;
     for (int i = node.begin; i < node.end; ++i) node.angle = std::max(node.angle, angle_between(node.area, face_area_[i]));
   }
@@ -166,10 +175,25 @@ void FaceBvh::refit(const std::vector<Vector3d>& X, double margin) {
   for (int n = static_cast<int>(nodes_.size()) - 1; n >= 0; --n) fit_node(n);  // children first
 }
 
+void FaceBvh::refit_boxes(const std::vector<Vector3d>& X, double margin) {
+  parallel::for_each(static_cast<int>(face_box_.size()), parallel::kMinParallelItems,
+                     [&](int i) { fit_face(i, X, margin); });
+  for (int n = static_cast<int>(nodes_.size()) - 1; n >= 0; --n) fit_node_box(n);  // children first
+}
+
 void FaceBvh::refit_faces(const std::vector<int>& faces, const std::vector<Vector3d>& X, double margin) {
   for (int f : faces) fit_face(position_[f], X, margin);
-  for (int f : faces)  // up to the root; a node refitted twice costs little, a short list is the case
-    for (int n = leaf_of_[position_[f]]; n >= 0; n = nodes_[n].parent) fit_node(n);
+  // Each node above them once, children first (they come after their parent). Their boxes alone:
+  // the normal cones serve for_overlapping_pairs(), which comes after a whole refit().
+  const uint32_t stamp = ++stamp_count_;
+  stamped_.clear();
+  for (int f : faces)
+    for (int n = leaf_of_[position_[f]]; n >= 0 && node_stamp_[n] != stamp; n = nodes_[n].parent) {
+      node_stamp_[n] = stamp;
+      stamped_.push_back(n);
+    }
+  std::sort(stamped_.begin(), stamped_.end(), std::greater<int>());
+  for (int n : stamped_) fit_node_box(n);
 }
 
 }  // namespace gauss

@@ -1,6 +1,7 @@
 #include "gauss/collision/self_intersection.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <mutex>
 #include <numeric>
@@ -64,11 +65,11 @@ std::vector<std::array<int, 2>> self_intersecting_pairs(const std::vector<std::a
   FaceBvh bvh(faces, X);
   bvh.refit(X, 0.0);
   PairSink sink;
-  bvh.for_overlapping_pairs([&](int f, int g) {  // every pair: the count is exact, not a guard's
+  bvh.for_overlapping_pairs([&](int, int f, int g) {
     Triangle a, b;
     const int shared = arrange(faces[f], faces[g], X, a, b);
     if (triangles_cross(a, b, shared)) sink.add(pair_key(f, g));
-  }, false);
+  }, false);  // every pair: the count is exact, not a guard's
   std::sort(sink.keys.begin(), sink.keys.end());
   std::vector<std::array<int, 2>> pairs(sink.keys.size());
   for (size_t i = 0; i < pairs.size(); ++i)
@@ -88,7 +89,9 @@ SelfIntersectionGuard::SelfIntersectionGuard(const MeshTopology& topo, const std
       candidate_(X0.size()),
       aim_(X0.size()),
       step_fraction_(X0.size(), 1.0f),
-      round_stamp_(X0.size(), 0) {
+      round_stamp_(X0.size(), 0),
+      moved_stamp_(topo.faces.size(), 0),
+      star_stamp_(X0.size(), 0) {
   // A star is one fan around its corner, closed or open, only if each of its edges has two faces
   // that run along it in opposite directions, but for the open fan's two boundary edges. Two fans
   // sharing one corner (two sheets touching there), a non-manifold edge or faces oriented against
@@ -107,6 +110,12 @@ SelfIntersectionGuard::SelfIntersectionGuard(const MeshTopology& topo, const std
   }
   for (size_t v = 0; v < X0.size(); ++v)
     if (star_kind_[v] != kNeverFlat && boundary[v] > 0) star_kind_[v] = boundary[v] == 2 ? kOpenFan : kNeverFlat;
+  moved_faces_.reserve(topo.faces.size());  // at most each once: a step never grows them
+  star_list_.reserve(X0.size());
+  stage_moves_.reserve(X0.size());
+  double length = 0;
+  for (const auto& e : topo.edges) length += (X0[e[1]] - X0[e[0]]).norm();
+  mean_edge_ = topo.edges.empty() ? 0 : length / static_cast<double>(topo.edges.size());
 }
 
 void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, const std::vector<int>* faces) {
@@ -147,12 +156,20 @@ void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, cons
     parallel::for_each(topo.num_vertices, parallel::kMinParallelItems, star);
     return;
   }
-  for (int f : *faces)  // the stars these faces belong to (a star twice is harmless)
-    for (int v : topo.faces[f]) star(v);
+  // The stars these faces belong to, each once.
+  const uint32_t stamp = ++star_stamp_count_;
+  star_list_.clear();
+  for (int f : *faces)
+    for (int v : topo.faces[f])
+      if (star_stamp_[v] != stamp) star_stamp_[v] = stamp, star_list_.push_back(v);
+  parallel::for_each(static_cast<int>(star_list_.size()), kMinParallelFaces, [&](int i) { star(star_list_[i]); });
 }
 
 int64_t SelfIntersectionGuard::bytes_needed(int64_t num_vertices, int64_t num_faces) {
-  return FaceBvh::bytes_needed(num_faces) + (24 + 4 + 4 + 4 + 2 + 24 + 24 + 1) * num_vertices;
+  // Per vertex the buffers above; per face its stamp and the candidate pairs, about 6 per face on
+  // the armadillos (kCandidateReach), with room for twice that and the lists' growth.
+  return FaceBvh::bytes_needed(num_faces) + (24 + 4 + 4 + 4 + 2 + 24 + 24 + 1 + 24 + 4 + 4) * num_vertices +
+         (4 + 4 + 16 * 8) * num_faces;
 }
 
 bool SelfIntersectionGuard::in_contact(int f, int g, const std::vector<Vector3d>& X) const {
@@ -167,18 +184,111 @@ bool SelfIntersectionGuard::in_contact(int f, int g, const std::vector<Vector3d>
 }
 
 const std::vector<uint64_t>& SelfIntersectionGuard::contacts(const std::vector<Vector3d>& X, bool skip_allowed) {
-  bvh_.refit(X, 0.5 * kContactMargin);
   find_flat_stars(X, nullptr);
   found_.clear();
-  bvh_.for_overlapping_pairs([&](int f, int g) {
+  const auto test = [&](int f, int g) {
     if (!in_contact(f, g, X)) return;
     const uint64_t key = pair_key(f, g);
     if (skip_allowed && allowed(key, f, g, X)) return;
     std::lock_guard<std::mutex> lock(found_mutex_);  // contacts are few: one lock suffices
     found_.push_back(key);
-  }, true);
+  };
+  // Pairs sharing a corner: only around a corner whose star folds can they cross (in_contact skips
+  // the others, and pairs sharing an edge). Each pair sharing one corner is seen from that corner.
+  const MeshTopology& topo = *topo_;
+  parallel::for_each(topo.num_vertices, parallel::kMinParallelItems, [&](int v) {
+    if (flat_star_[v]) return;
+    const int begin = topo.vertex_corner_start[v], end = topo.vertex_corner_start[v + 1];
+    for (int i = begin; i < end; ++i)
+      for (int j = i + 1; j < end; ++j) test(topo.vertex_corners[i] / 3, topo.vertex_corners[j] / 3);
+  });
+  // Pairs sharing none whose boxes overlap.
+  if (!candidates_hold(X) && !find_candidates(X)) {
+    // The vertices move too far for candidates to last: one search of the tree, which leaves out
+    // the pairs inside flat patches (face_bvh.h), most of a fast-moving surface's pairs.
+    bvh_.refit(X, 0.5 * kContactMargin);
+    bvh_.for_overlapping_pairs([&](int, int f, int g) {
+      if (!share_corner(f, g)) test(f, g);
+    }, true);
+  } else {
+    // Among the candidates, or of a face that moved too far for them (a pair may then be tested
+    // twice: found_ is made unique below).
+    parallel::for_each(static_cast<int>(num_candidates_), parallel::kMinParallelItems, [&](int i) {
+      const int f = static_cast<int>(candidates_[i] >> 32), g = static_cast<int>(candidates_[i] & 0xffffffffu);
+      if (bvh_.boxes_overlap(f, g)) test(f, g);
+    });
+    parallel::for_each(static_cast<int>(moved_faces_.size()), kMinParallelFaces, [&](int i) {
+      bvh_.pairs_with(moved_faces_[i], [&](int f, int g) {
+        if (!share_corner(f, g)) test(f, g);
+      });
+    });
+  }
   std::sort(found_.begin(), found_.end());
+  found_.erase(std::unique(found_.begin(), found_.end()), found_.end());
   return found_;
+}
+
+bool SelfIntersectionGuard::share_corner(int f, int g) const {
+  const std::array<int, 3>&a = topo_->faces[f], &b = topo_->faces[g];
+  for (int v : a)
+    if (v == b[0] || v == b[1] || v == b[2]) return true;
+  return false;
+}
+
+bool SelfIntersectionGuard::candidates_hold(const std::vector<Vector3d>& X) {
+  if (candidate_reach_ < 0) return false;
+  const MeshTopology& topo = *topo_;
+  moved_faces_.clear();
+  const uint32_t stamp = ++moved_stamp_count_;
+  for (size_t v = 0; v < X.size(); ++v) {
+    if (!((X[v] - candidates_at_[v]).cwiseAbs().array() > candidate_reach_).any()) continue;
+    for (int i = topo.vertex_corner_start[v]; i < topo.vertex_corner_start[v + 1]; ++i) {
+      const int f = topo.vertex_corners[i] / 3;
+      if (moved_stamp_[f] == stamp) continue;
+      moved_stamp_[f] = stamp;
+      moved_faces_.push_back(f);
+    }
+  }
+  if (static_cast<double>(moved_faces_.size()) > kMostMovedFaces * static_cast<double>(topo.faces.size())) return false;
+  bvh_.refit_boxes(X, 0.5 * kContactMargin);
+  return true;
+}
+
+bool SelfIntersectionGuard::find_candidates(const std::vector<Vector3d>& X) {
+  // Only worth it if most vertices stay within the reach for a few stages; on a strong style's first
+  // steps they do not.
+  candidate_reach_ = -1;
+  moved_faces_.clear();
+  const double reach = kCandidateReach * mean_edge_;
+  if (kStagesAhead * stage_move_ > reach) return false;
+  bvh_.refit_boxes(X, 0.5 * kContactMargin + reach);
+  // Each task of the search fills a small buffer of its own and moves it into candidates_ when full,
+  // at a place it claims: no lock, and the kept list grows only past its largest size so far.
+  const int tasks = bvh_.num_tasks();
+  task_buffer_.resize(static_cast<size_t>(tasks) * kTaskBuffer);
+  task_fill_.assign(tasks, 0);
+  std::atomic<size_t> claimed{0};
+  const auto flush = [&](int t) {
+    const size_t at = claimed.fetch_add(task_fill_[t]);
+    for (int i = 0; i < task_fill_[t]; ++i)
+      if (at + i < candidates_.size()) candidates_[at + i] = task_buffer_[static_cast<size_t>(t) * kTaskBuffer + i];
+    task_fill_[t] = 0;
+  };
+  bvh_.for_overlapping_pairs([&](int t, int f, int g) {
+    if (share_corner(f, g)) return;
+    task_buffer_[static_cast<size_t>(t) * kTaskBuffer + task_fill_[t]++] = pair_key(f, g);
+    if (task_fill_[t] == kTaskBuffer) flush(t);
+  }, false);
+  for (int t = 0; t < tasks; ++t) flush(t);
+  if (claimed > candidates_.size()) {  // too many for the list: again, with room for a quarter more
+    candidates_.resize(claimed + claimed / 4);
+    return find_candidates(X);
+  }
+  num_candidates_ = claimed;
+  candidates_at_ = X;
+  candidate_reach_ = reach;
+  bvh_.refit_boxes(X, 0.5 * kContactMargin);
+  return true;
 }
 
 const std::vector<uint64_t>& SelfIntersectionGuard::contacts_of(const std::vector<int>& faces,
@@ -186,10 +296,14 @@ const std::vector<uint64_t>& SelfIntersectionGuard::contacts_of(const std::vecto
   bvh_.refit_faces(faces, X, 0.5 * kContactMargin);
   find_flat_stars(X, &faces);
   found_.clear();
-  bvh_.for_pairs_with(faces, [&](int f, int g) {
-    if (!in_contact(f, g, X)) return;
-    const uint64_t key = pair_key(f, g);
-    if (!allowed(key, f, g, X)) found_.push_back(key);
+  parallel::for_each(static_cast<int>(faces.size()), kMinParallelFaces, [&](int i) {
+    bvh_.pairs_with(faces[i], [&](int f, int g) {
+      if (!in_contact(f, g, X)) return;
+      const uint64_t key = pair_key(f, g);
+      if (allowed(key, f, g, X)) return;
+      std::lock_guard<std::mutex> lock(found_mutex_);
+      found_.push_back(key);
+    });
   });
   std::sort(found_.begin(), found_.end());
   found_.erase(std::unique(found_.begin(), found_.end()), found_.end());
@@ -241,6 +355,8 @@ void SelfIntersectionGuard::take_slid_pairs() {
 
 void SelfIntersectionGuard::start_from(const std::vector<Vector3d>& X) {
   slid_.clear();
+  candidate_reach_ = -1;
+  stage_move_ = 0;
   allowed_ = contacts(X, false);
   crossing_.clear();
   for (uint64_t key : allowed_) {
@@ -257,6 +373,14 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
   for (int v = 0; v < nV; ++v) longest = std::max(longest, (X[v] - safe[v]).cwiseAbs().maxCoeff());
   constexpr int kMaxStages = 256;
   const int stages = static_cast<int>(std::min<double>(kMaxStages, std::max(1.0, std::ceil(longest / kStageMove))));
+  // How far most vertices go in a stage: whether candidates found now would last (find_candidates()).
+  stage_moves_.resize(nV);
+  for (int v = 0; v < nV; ++v) stage_moves_[v] = static_cast<float>((X[v] - safe[v]).cwiseAbs().maxCoeff() / stages);
+  if (nV > 0) {
+    const auto most = stage_moves_.begin() + static_cast<std::ptrdiff_t>(kMostVertices * (nV - 1));
+    std::nth_element(stage_moves_.begin(), most, stage_moves_.end());
+    stage_move_ = *most;
+  }
   if (stages == 1) {
     limit_stage(safe, X);
     take_slid_pairs();

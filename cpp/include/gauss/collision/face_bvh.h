@@ -16,10 +16,14 @@
 // Usage:
 //   FaceBvh bvh(topo.faces, X0);             // once (allocates); X0 #V by 3
 //   bvh.refit(X, margin);                    // per check: boxes of the faces at X (#V by 3), grown by margin
-//   bvh.for_overlapping_pairs(fn, skip_flat); // fn(f, g) once for every pair of faces f != g whose
+//   bvh.for_overlapping_pairs(fn, skip_flat); // fn(t, f, g) once for every pair of faces f != g whose
 //                                            // boxes overlap (in either order; skip_flat: not inside
 //                                            // a flat patch), from several threads at once (fn must
-//                                            // be thread-safe)
+//                                            // be thread-safe); t < num_tasks() is the task that
+//                                            // found the pair: a caller that collects per task
+//                                            // needs no lock
+//   bvh.refit_boxes(X, margin);              // the boxes alone: the flat patches stay the last refit()'s
+//   bvh.pairs_with(f, fn);                   // fn(f, g) for every face g != f whose box overlaps f's
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -38,15 +42,18 @@ class FaceBvh {
   FaceBvh(const std::vector<std::array<int, 3>>& faces, const std::vector<Eigen::Vector3d>& X0);
 
   void refit(const std::vector<Eigen::Vector3d>& X, double margin);
-  // The same for the given faces only (and the nodes above them), when no other face moved.
+  void refit_boxes(const std::vector<Eigen::Vector3d>& X, double margin);
+  // The boxes of the given faces only (and of the nodes above them), when no other face moved.
   void refit_faces(const std::vector<int>& faces, const std::vector<Eigen::Vector3d>& X, double margin);
 
   template <class Fn>
   void for_overlapping_pairs(Fn&& fn, bool skip_flat) const;
-  // fn(f, g) for every face f of `faces` and every other face g whose boxes overlap (a pair of two
-  // listed faces comes twice, once from each), serially.
+  int num_tasks() const { return static_cast<int>(tasks_.size()); }
   template <class Fn>
-  void for_pairs_with(const std::vector<int>& faces, Fn&& fn) const;
+  void pairs_with(int face, Fn&& fn) const {
+    if (!nodes_.empty()) with_box(face, 0, fn);
+  }
+  bool boxes_overlap(int f, int g) const { return face_box_[position_[f]].overlaps(face_box_[position_[g]]); }
 
   // Bytes a FaceBvh of num_faces faces holds.
   static int64_t bytes_needed(int64_t num_faces);
@@ -83,7 +90,8 @@ class FaceBvh {
 
   int build(int begin, int end, int parent, const std::vector<Eigen::Vector3d>& centroid);
   void fit_face(int i, const std::vector<Eigen::Vector3d>& X, double margin);  // i: place in tree order
-  void fit_node(int n);
+  void fit_node(int n);      // its box and its normal cone
+  void fit_node_box(int n);  // its box alone
   // The pairs within node n (a != b: between nodes a and b), depth first.
   template <class Fn>
   void within(int n, Fn& fn, bool skip_flat) const;
@@ -107,6 +115,9 @@ class FaceBvh {
   std::vector<Box> face_box_;  // #F, in tree order
   std::vector<Eigen::Vector3d> face_area_;  // #F, in tree order: area vectors (twice the area, along the normal)
   std::vector<Node> nodes_;    // children after their parent (refit runs backwards)
+  std::vector<uint32_t> node_stamp_;  // #nodes: refit_faces() fits each node above its faces once
+  std::vector<int> stamped_;
+  uint32_t stamp_count_ = 0;
 };
 
 template <class Fn>
@@ -164,15 +175,10 @@ template <class Fn>
 void FaceBvh::for_overlapping_pairs(Fn&& fn, bool skip_flat) const {
   if (nodes_.empty()) return;
   parallel::for_tasks(static_cast<int>(tasks_.size()), nodes_.size() > 2048, [&](int t) {
-    if (tasks_[t][0] == tasks_[t][1]) within(tasks_[t][0], fn, skip_flat);
-    else between(tasks_[t][0], tasks_[t][1], fn);
+    const auto pair = [&](int f, int g) { fn(t, f, g); };
+    if (tasks_[t][0] == tasks_[t][1]) within(tasks_[t][0], pair, skip_flat);
+    else between(tasks_[t][0], tasks_[t][1], pair);
   });
-}
-
-template <class Fn>
-void FaceBvh::for_pairs_with(const std::vector<int>& faces, Fn&& fn) const {
-  if (nodes_.empty()) return;
-  for (int f : faces) with_box(f, 0, fn);
 }
 
 }  // namespace gauss

@@ -37,7 +37,9 @@
 // once (an open star: less than once) covers no point twice, so none of its faces cross. That holds
 // for one fan only: a star of two fans (two sheets meeting in the corner), with a non-manifold edge or
 // faces oriented against each other is never taken as flat. Only the pairs around the other corners
-// are tested.
+// are tested, found from the corners themselves. The pairs sharing no corner come from a search of
+// the hierarchy that serves many stages once a run slows down (candidates_hold() below): late in a
+// run, when only a contact still moves, a check costs a pass over the faces, not a search.
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
@@ -113,6 +115,29 @@ class SelfIntersectionGuard {
   // Pairs (f < g, as f * 2^32 + g) in contact at X, without the allowed ones if skip_allowed; sorted.
   // Into found_ (reused: a step allocates nothing once it has grown), which is returned.
   const std::vector<uint64_t>& contacts(const std::vector<Eigen::Vector3d>& X, bool skip_allowed);
+  // The pairs sharing no corner whose boxes may overlap (the first num_candidates_ of candidates_):
+  // those whose boxes, grown by candidate_reach_ more, overlapped at candidates_at_. Their boxes can
+  // only overlap now if a corner moved further than that (per coordinate, as the boxes grow): the
+  // faces around such corners (moved_faces_) are searched for one by one. So the tree is searched
+  // once for many stages, until more than kMostMovedFaces of the faces have moved too far.
+  // candidates_hold() finds those faces and refits the boxes, or says that the candidates no longer
+  // serve; find_candidates() finds new ones, or says that they would not last (then contacts()
+  // searches the tree for the stage alone, leaving out the pairs inside flat patches as face_bvh.h
+  // allows; the candidates hold every pair).
+  bool candidates_hold(const std::vector<Eigen::Vector3d>& X);
+  bool find_candidates(const std::vector<Eigen::Vector3d>& X);
+  bool share_corner(int f, int g) const;
+  // candidate_reach_ in mean edge lengths at the rest shape: a step late in a run moves 99% of the
+  // vertices by less than a tenth of an edge (measured: docs/performance.md#the-guards-cost).
+  static constexpr double kCandidateReach = 0.25;
+  static constexpr double kMostMovedFaces = 0.02;
+  // Candidates are found only if kMostVertices of the vertices move less than their reach in
+  // kStagesAhead stages at the current stage's pace (stage_move_).
+  static constexpr double kMostVertices = 0.98;
+  static constexpr double kStagesAhead = 4;
+  // A search for the contacts of this many faces (each a walk down the tree) is worth sharing
+  // among threads.
+  static constexpr int kMinParallelFaces = 256;
 
   // Marks flat_star_[v] for every vertex whose star covers no point twice (see above) at X: all, or
   // those of the given faces' corners.
@@ -146,6 +171,22 @@ class SelfIntersectionGuard {
   std::vector<int> held_;                 // vertices with t < 1
   std::vector<int> touched_;              // faces moved in the current round
   std::vector<uint64_t> found_;           // the last contacts() or contacts_of()
+  std::vector<uint64_t> candidates_;      // see candidates_hold()
+  size_t num_candidates_ = 0;
+  static constexpr int kTaskBuffer = 64;  // find_candidates(): per task of the search
+  std::vector<uint64_t> task_buffer_;
+  std::vector<int> task_fill_;
+  std::vector<Eigen::Vector3d> candidates_at_;  // #V
+  double candidate_reach_ = -1;           // < 0: no candidates yet
+  double mean_edge_ = 0;                  // at the rest shape
+  double stage_move_ = 0;                 // kMostVertices of the vertices move less in a stage
+  std::vector<float> stage_moves_;        // #V: limit()'s scratch for it
+  std::vector<int> moved_faces_;          // see candidates_hold()
+  std::vector<uint32_t> moved_stamp_;     // #F
+  uint32_t moved_stamp_count_ = 0;
+  std::vector<uint32_t> star_stamp_;      // #V: find_flat_stars() of some faces tests each star once
+  std::vector<int> star_list_;
+  uint32_t star_stamp_count_ = 0;
   std::mutex found_mutex_;                // contacts() fills found_ from several threads
   std::vector<int> held_in_any_;          // a staged limit(): vertices held in some stage
   int last_held_ = 0;
