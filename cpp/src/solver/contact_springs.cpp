@@ -77,14 +77,22 @@ void ContactSprings::solve(ConstrainedLaplacian& L, std::vector<Vector3d>& X) {
   const auto at = [&](const std::vector<double>& y, int s) {
     return Vector3d(&y[3 * static_cast<size_t>(L.position(unknown_[s]))]);
   };
-  // work_ := L^-1 P v for per-spring vectors v.
+  // The iterations read L^-1 P v at the springs' rows only: where the springs are a small part of
+  // the mesh, a solve restricted to the elimination tree above them gives those rows for a part of a
+  // whole solve's cost (cholesky_solver.h), on one thread; else the whole solve, on all.
+  rows_.resize(k);
+  for (int s = 0; s < k; ++s) rows_[s] = L.position(unknown_[s]);
+  L.plan_sparse(rows_.data(), k, plan_);
+  planned_ = kPlannedShare * static_cast<double>(L.factor_nonzeros()) > static_cast<double>(L.plan_nonzeros(plan_));
+  // work_ := L^-1 P v for per-spring vectors v (right at the springs' rows).
   const auto apply_inverse = [&](const std::vector<Vector3d>& v) {
     work_.assign(n3, 0.0);
     for (int s = 0; s < k; ++s) {
-      double* w = &work_[3 * static_cast<size_t>(L.position(unknown_[s]))];
+      double* w = &work_[3 * static_cast<size_t>(rows_[s])];
       w[0] += v[s].x(), w[1] += v[s].y(), w[2] += v[s].z();
     }
-    L.solve_ordered_in_place(work_.data());
+    if (planned_) L.solve_planned_in_place(work_.data(), plan_);
+    else L.solve_ordered_in_place(work_.data());
   };
   // A plane spring acts along its normal only: the system lives in the span of the normals, and
   // every vector of it is projected there.
@@ -102,16 +110,15 @@ void ContactSprings::solve(ConstrainedLaplacian& L, std::vector<Vector3d>& X) {
     force_[s] = project(s, force_[s]);
     warm = warm || force_[s] != Vector3d::Zero();
   }
-  // Residual of the warm start f: target - K^+ f - P^T L^-1 P f (projected).
+  // Residual of the warm start f: target - K^+ f - P^T L^-1 P f (projected). reached_: P^T L^-1 P f.
+  reached_.assign(k, Vector3d::Zero());
   if (warm) {
     apply_inverse(force_);
-    accumulated_ = work_;
-  } else {
-    accumulated_.assign(n3, 0.0);
+    for (int s = 0; s < k; ++s) reached_[s] = at(work_, s);
   }
   double rz = 0, residual_norm = 0;
   for (int s = 0; s < k; ++s) {
-    residual_[s] = target_[s] - force_[s] / weight(s) - (warm ? project(s, at(accumulated_, s)) : Vector3d::Zero());
+    residual_[s] = target_[s] - force_[s] / weight(s) - project(s, reached_[s]);
     preconditioned_[s] = precondition(s, residual_[s]);
     direction_[s] = preconditioned_[s];
     rz += residual_[s].dot(preconditioned_[s]);
@@ -128,7 +135,7 @@ void ContactSprings::solve(ConstrainedLaplacian& L, std::vector<Vector3d>& X) {
     }
     if (!(curvature > 0)) break;
     const double alpha = rz / curvature;
-    for (size_t i = 0; i < n3; ++i) accumulated_[i] += alpha * work_[i];
+    for (int s = 0; s < k; ++s) reached_[s] += alpha * at(work_, s);
     double next_rz = 0;
     residual_norm = 0;
     for (int s = 0; s < k; ++s) {
@@ -143,7 +150,12 @@ void ContactSprings::solve(ConstrainedLaplacian& L, std::vector<Vector3d>& X) {
     for (int s = 0; s < k; ++s) direction_[s] = preconditioned_[s] + beta * direction_[s];
     ++iterations_;
   }
-  for (size_t i = 0; i < n3; ++i) rhs[i] = base_[i] + accumulated_[i];
+  // x = L^-1 (b + P f): the springs' forces on the right-hand side, one whole solve.
+  for (int s = 0; s < k; ++s) {
+    double* r = rhs + 3 * static_cast<size_t>(rows_[s]);
+    r[0] += force_[s].x(), r[1] += force_[s].y(), r[2] += force_[s].z();
+  }
+  L.solve_ordered_in_place(rhs);
   L.finish_solve(X);
 }
 

@@ -96,6 +96,15 @@ void CholeskySolver::factor(Eigen::SparseMatrix<double> A, Progress* watcher) {
       nonzeros += int64_t{w} * m - int64_t{w} * (w - 1) / 2;
     }
     std::vector<double> top_sums(3 * static_cast<size_t>(kFactorParts) * (n - S.top_col), 0.0);
+    // The elimination tree of the supernodes: a supernode's parent holds its first row below the
+    // diagonal block.
+    std::vector<int> super_of_col(n), super_parent(S.num_supernodes(), -1);
+    for (int t = 0; t < S.num_supernodes(); ++t)
+      for (int c = S.col_start[t]; c < S.col_start[t + 1]; ++c) super_of_col[c] = t;
+    for (int t = 0; t < S.num_supernodes(); ++t) {
+      const int w = S.col_start[t + 1] - S.col_start[t];
+      if (S.row_start[t + 1] - S.row_start[t] > w) super_parent[t] = super_of_col[S.rows[S.row_start[t] + w]];
+    }
     n_ = n;
     nonzeros_ = nonzeros;
     new_of_old_ = std::move(S.new_of_old);
@@ -108,6 +117,9 @@ void CholeskySolver::factor(Eigen::SparseMatrix<double> A, Progress* watcher) {
     part_start_ = std::move(S.part_start);
     top_col_ = S.top_col;
     top_sums_ = std::move(top_sums);
+    super_of_col_ = std::move(super_of_col);
+    super_parent_ = std::move(super_parent);
+    plan_mark_.assign(super_parent_.size(), 0);
   } catch (const std::bad_alloc&) {
     throw OutOfMemory("not enough memory to factor the Laplacian of " + std::to_string(n) + " unknowns");
   }
@@ -223,6 +235,35 @@ void CholeskySolver::solve_ordered_in_place(double* y) const {
   // Backward (L^T x = z): the rows above the cut first, then the parts.
   backward(top, supernodes, y);
   parallel::for_tasks(kFactorParts, n_ > 4096, [&](int t) { backward(part_start_[t], part_start_[t + 1], y); });
+}
+
+}  // namespace gauss
+
+namespace gauss {
+
+void CholeskySolver::plan_sparse(const int* rows, int count, std::vector<int>& plan) const {
+  plan.clear();
+  for (int i = 0; i < count; ++i)
+    for (int t = super_of_col_[rows[i]]; t >= 0 && !plan_mark_[t]; t = super_parent_[t]) {
+      plan_mark_[t] = 1;
+      plan.push_back(t);
+    }
+  std::sort(plan.begin(), plan.end());  // children before their parents
+  for (int t : plan) plan_mark_[t] = 0;
+}
+
+void CholeskySolver::solve_planned_in_place(double* y, const std::vector<int>& plan) const {
+  for (int t : plan) forward(t, t + 1, y, nullptr);
+  for (auto t = plan.rbegin(); t != plan.rend(); ++t) backward(*t, *t + 1, y);
+}
+
+long long CholeskySolver::plan_nonzeros(const std::vector<int>& plan) const {
+  long long nonzeros = 0;
+  for (int t : plan) {
+    const int w = col_start_[t + 1] - col_start_[t], m = row_start_[t + 1] - row_start_[t];
+    nonzeros += int64_t{w} * m - int64_t{w} * (w - 1) / 2;
+  }
+  return nonzeros;
 }
 
 }  // namespace gauss

@@ -72,6 +72,9 @@ class ConstrainedLaplacian {
   double* rhs_data() { return rhs_.data(); }
   int position(int u) const { return cholesky_.position(u); }
   void solve_ordered_in_place(double* Y) const { cholesky_.solve_ordered_in_place(Y); }
+  void plan_sparse(const int* rows, int count, std::vector<int>& plan) const { cholesky_.plan_sparse(rows, count, plan); }
+  void solve_planned_in_place(double* Y, const std::vector<int>& plan) const { cholesky_.solve_planned_in_place(Y, plan); }
+  long long plan_nonzeros(const std::vector<int>& plan) const { return cholesky_.plan_nonzeros(plan); }
   void finish_solve(std::vector<Eigen::Vector3d>& X);
   // The unknown of vertex v, -1 for a fixed or unreferenced vertex; L_ff's diagonal at unknown u (the
   // sum of the weights of the unknown's edges).

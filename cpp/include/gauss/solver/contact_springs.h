@@ -16,8 +16,11 @@
 // n_i, solve the small system (K^+ + P^T L^-1 P) f = K K^+ (p - P^T L^-1 b) in the span of the normals.
 // That system is symmetric positive definite there and is solved by conjugate gradients, each
 // iteration one solve with the existing factor (the three coordinates together), warm-started from
-// the last step's forces: the contact changes little from step to step. No re-factorization, and
-// with no spring the global step is the plain one, bit for bit.
+// the last step's forces: the contact changes little from step to step. An iteration only reads the
+// springs' rows of its solve, so where the springs are few it solves only on the elimination tree's
+// paths above them (cholesky_solver.h: plan_sparse); the step's solution is then one whole solve with
+// the forces on the right-hand side. No re-factorization, and with no spring the global step is the
+// plain one, bit for bit.
 //
 // A spring stays kKeepSteps steps after its vertex was last held, so that a contact the springs keep
 // apart (the guard then holds nothing there) does not let go at once and press in again.
@@ -42,10 +45,13 @@ class ContactSprings {
   // leaves: on the 14.6K armadillo 1e-4 took 20 iterations a step against 9, for the same share.
   static constexpr double kTolerance = 1e-2;
   static constexpr int kMaxIterations = 40;
+  // The iterations solve above the springs only (cholesky_solver.h's plan) when that is less than
+  // this share of the factor: it runs on one thread, the whole solve on two.
+  static constexpr double kPlannedShare = 0.5;
 
-  // Bytes the springs may hold for a mesh of this many vertices: the per-vertex slot and three
+  // Bytes the springs may hold for a mesh of this many vertices: the per-vertex slot and two
   // buffers of the unknowns (the per-spring arrays come on top, as many as vertices are held).
-  static int64_t bytes_needed(int64_t num_vertices) { return (4 + 3 * 24) * num_vertices; }
+  static int64_t bytes_needed(int64_t num_vertices) { return (4 + 2 * 24) * num_vertices; }
 
   void set_stiffness(double stiffness) { stiffness_ = stiffness; }
   double stiffness() const { return stiffness_; }
@@ -71,10 +77,13 @@ class ContactSprings {
   std::vector<int> idle_;                // per spring: steps since its vertex was last held
   std::vector<Eigen::Vector3d> force_;   // per spring: f of the last solve (the warm start)
   std::vector<Eigen::Vector3d> normal_;  // per spring: its vertex's unit normal when it was last held
-  // Per spring, the conjugate gradients' vectors; per unknown (by 3, elimination order) L^-1 b, the
-  // running L^-1 P f and one solve's buffer. Kept: a step allocates nothing once they have grown.
-  std::vector<Eigen::Vector3d> target_, residual_, direction_, preconditioned_, applied_;
-  std::vector<double> base_, accumulated_, work_;
+  // Per spring, the conjugate gradients' vectors and its row (elimination order); per unknown (by 3,
+  // elimination order) L^-1 b and one solve's buffer; the supernodes above the springs' rows. Kept:
+  // a step allocates nothing once they have grown.
+  std::vector<Eigen::Vector3d> target_, residual_, direction_, preconditioned_, applied_, reached_;
+  std::vector<int> rows_, plan_;
+  std::vector<double> base_, work_;
+  bool planned_ = false;
   int iterations_ = 0;
 };
 

@@ -16,6 +16,7 @@
 // bit-identical for any thread count. Eigen blocks its dense products by the cache sizes it detects,
 // so a machine with other caches may round differently.
 #include <Eigen/SparseCore>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -39,6 +40,16 @@ class CholeskySolver {
   // permuting passes). No allocation happens here; one solve at a time per solver.
   void solve_ordered_in_place(double* Y) const;
   int position(int i) const { return new_of_old_[i]; }
+  // For a right-hand side that is zero but in a few rows, of which only those rows of the solution
+  // are wanted (contact_springs.h): the supernodes on the elimination tree's paths from those rows
+  // (in elimination order) to its root, ascending. solve_planned_in_place(Y, plan) is then
+  // solve_ordered_in_place() restricted to them: Y must be zero in the plan's other rows, and the
+  // solution is right in the plan's rows (the others are neither read nor written). It costs
+  // plan_nonzeros(plan) of factor_nonzeros(), on one thread. plan_sparse() allocates nothing once
+  // `plan` has grown.
+  void plan_sparse(const int* rows, int count, std::vector<int>& plan) const;
+  void solve_planned_in_place(double* Y, const std::vector<int>& plan) const;
+  long long plan_nonzeros(const std::vector<int>& plan) const;
   int size() const { return n_; }
   // Values of L stored: its lower triangle, diagonal included, plus the few explicit zeros that
   // relaxed supernodes add.
@@ -64,6 +75,9 @@ class CholeskySolver {
   // Per part, the sums its forward sweep owes the rows above the cut (3 per row), added to those rows
   // in part order once both parts are done. Zero between solves.
   mutable std::vector<double> top_sums_;
+  std::vector<int> super_of_col_;   // #rows: the supernode that holds it
+  std::vector<int> super_parent_;   // #supernodes: its parent in the elimination tree, -1 for a root
+  mutable std::vector<uint8_t> plan_mark_;  // #supernodes, zero between plan_sparse() calls
 };
 
 }  // namespace gauss
