@@ -144,6 +144,42 @@ TEST(CholeskySolver, MeshLaplaciansWithPinsMatchSimplicialLDLT) {
   }
 }
 
+TEST(CholeskySolver, PlannedSolveGivesTheWholeSolveAtItsRows) {
+  // A right-hand side nonzero in a few rows (contact springs' forces): the solve restricted to the
+  // elimination tree's paths above them gives the whole solve's values there, for part of its cost.
+  // Small meshes (one supernode chain) and the nested-dissection path, rows clustered and scattered.
+  const gauss::TriangleMesh small = gauss_test::icosphere(3), large = gauss_test::grid_cube(60);
+  for (const gauss::TriangleMesh* m : {&small, &large}) {
+    const SpMat A = mesh_laplacian(*m, {0, 3}, 11);
+    gauss::CholeskySolver s;
+    s.factor(A);
+    const int n = s.size();
+    for (const std::vector<int>& unknowns : {std::vector<int>{7}, std::vector<int>{7, 8, 9, 10, 11, 12},
+                                             std::vector<int>{1, n / 3, n / 2, n - 2}}) {
+      SCOPED_TRACE("unknowns " + std::to_string(unknowns.size()) + " of " + std::to_string(n));
+      std::vector<double> B(3 * static_cast<size_t>(n), 0.0);
+      std::vector<int> rows;
+      for (int u : unknowns) {
+        rows.push_back(s.position(u));
+        for (int k = 0; k < 3; ++k) B[3 * u + k] = 1.0 + u % 5 + k;
+      }
+      const std::vector<double> whole = solve(s, B);
+      std::vector<int> plan;
+      s.plan_sparse(rows.data(), static_cast<int>(rows.size()), plan);
+      EXPECT_TRUE(std::is_sorted(plan.begin(), plan.end()));
+      std::vector<double> Y(3 * static_cast<size_t>(n), 0.0);
+      for (int u : unknowns)
+        for (int k = 0; k < 3; ++k) Y[3 * s.position(u) + k] = B[3 * u + k];
+      s.solve_planned_in_place(Y.data(), plan);
+      for (int u : unknowns)
+        for (int k = 0; k < 3; ++k)
+          EXPECT_NEAR(Y[3 * s.position(u) + k], whole[3 * u + k], 1e-12 * std::abs(whole[3 * u + k]) + 1e-14);
+      if (m == &large && unknowns.size() < 10) EXPECT_LT(s.plan_nonzeros(plan), s.factor_nonzeros() / 2);
+      EXPECT_LE(s.plan_nonzeros(plan), s.factor_nonzeros());
+    }
+  }
+}
+
 TEST(CholeskySolver, SharedMeshLaplacianMatchesSimplicialLDLT) {
   const std::string path = gauss_test::shared_mesh("bunny/bun_zipper_35947.obj");
   if (!std::ifstream(path)) GTEST_SKIP() << "../shared/meshes not present";
