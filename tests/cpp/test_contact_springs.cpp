@@ -1,6 +1,7 @@
 // Contact springs (contact_springs.h), the global step's side of Avoid Self-Intersections: the solve
 // against a dense one, no trace without a contact, and parts pressed together that the guard alone
 // stalled.
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -154,23 +155,37 @@ TEST(ContactSprings, WithoutAContactTheyLeaveNoTrace) {
 
 TEST(ContactSprings, PlatesPressedTogetherGoOnTurningFlat) {
   // Without the guard the plates pass through each other and turn flat (share 1.0). The guard alone
-  // held the pressed ends and with them both plates (share 0.543 when written); with the springs the
-  // global step knows of the contact, and the plates turn flat but for the contact (0.939 on Linux).
-  const gauss::TriangleMesh m = gauss_test::leaning_plates(4);
-  ASSERT_EQ(gauss::count_self_intersections(faces_of(m), points_of(m.V)), 0);
-  const Outcome through = stylize(m, false, gauss::ContactSprings::kDefaultStiffness);
-  EXPECT_GT(through.crossings, 0) << "the case does not press the plates together";
-  const Outcome alone = stylize(m, true, 0.0);
-  EXPECT_EQ(alone.crossings, 0);
-  EXPECT_EQ(alone.springs_max, 0);
-  EXPECT_LT(alone.share, through.share - 0.2) << "the guard alone does not stall here: the case tests nothing";
-  const Outcome springs = stylize(m, true, gauss::ContactSprings::kDefaultStiffness);
-  EXPECT_EQ(springs.crossings, 0);
-  EXPECT_GT(springs.springs_max, 0);
-  // The margins leave room for the platforms' maths libraries (the Windows build's cos and exp take
-  // this run elsewhere: 0.85 there, 0.94 on Linux); the guard alone stays far below either.
-  EXPECT_GT(springs.share, alone.share + 0.2);
-  EXPECT_GT(springs.share, through.share - 0.2);
+  // holds the pressed ends and with them both plates (share about 0.52); with the springs the global
+  // step knows of the contact, and the plates turn flat but for the contact (about 0.9). Where the
+  // plates press together the run is chaotic: scaling the input by 1 + 3e-5 took one run from 0.92 to
+  // 0.61, and the Windows build's maths library took another to 0.39. So the case is run on seven
+  // inputs scaled by a few millionths, and their medians are compared (on 24 such inputs, 3 runs with
+  // springs ended below the guard alone's best plus 0.2, none of the guard alone's above 0.6).
+  std::vector<double> alone, springs;
+  for (int k = 0; k < 7; ++k) {
+    gauss::TriangleMesh m = gauss_test::leaning_plates(4);
+    for (double& c : m.V) c *= 1.0 + 1e-6 * k;
+    if (k == 0) {
+      ASSERT_EQ(gauss::count_self_intersections(faces_of(m), points_of(m.V)), 0);
+      const Outcome through = stylize(m, false, gauss::ContactSprings::kDefaultStiffness);
+      EXPECT_GT(through.crossings, 0) << "the case does not press the plates together";
+      EXPECT_GT(through.share, 0.95);
+    }
+    const Outcome held = stylize(m, true, 0.0);
+    EXPECT_EQ(held.crossings, 0);
+    EXPECT_EQ(held.springs_max, 0);
+    const Outcome sprung = stylize(m, true, gauss::ContactSprings::kDefaultStiffness);
+    EXPECT_EQ(sprung.crossings, 0);
+    EXPECT_GT(sprung.springs_max, 0);
+    alone.push_back(held.share);
+    springs.push_back(sprung.share);
+  }
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  EXPECT_LT(median(alone), 0.75) << "the guard alone does not stall here: the case tests nothing";
+  EXPECT_GT(median(springs), median(alone) + 0.2);
 }
 
 }  // namespace test_contact_springs
