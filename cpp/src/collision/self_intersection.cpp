@@ -166,9 +166,10 @@ void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, cons
 }
 
 int64_t SelfIntersectionGuard::bytes_needed(int64_t num_vertices, int64_t num_faces) {
-  // Per vertex the buffers above; per face its stamp and the candidate pairs, about 6 per face on
-  // the armadillos (kCandidateReach), with room for twice that and the lists' growth.
-  return FaceBvh::bytes_needed(num_faces) + (24 + 4 + 4 + 4 + 2 + 24 + 24 + 1 + 24 + 4 + 4) * num_vertices +
+  // Per vertex the buffers above; per face its stamp, its place in moved_faces_ and the candidate
+  // pairs, about 6 per face on the armadillos (kCandidateReach), with room for twice that and the
+  // list's growth.
+  return FaceBvh::bytes_needed(num_faces) + (24 + 4 + 4 + 4 + 2 + 24 + 24 + 1 + 24 + 4 + 4 + 4) * num_vertices +
          (4 + 4 + 16 * 8) * num_faces;
 }
 

@@ -60,6 +60,10 @@ void adjacency(const Eigen::SparseMatrix<double>& A, std::vector<int>& start, st
       }
 }
 
+// Values of L a supernode of w columns and m rows holds: its rows below the diagonal block, and
+// the block's lower triangle.
+int64_t supernode_nonzeros(int w, int m) { return int64_t{w} * m - int64_t{w} * (w - 1) / 2; }
+
 }  // namespace
 
 void CholeskySolver::factor(Eigen::SparseMatrix<double> A, Progress* watcher) {
@@ -93,7 +97,7 @@ void CholeskySolver::factor(Eigen::SparseMatrix<double> A, Progress* watcher) {
       const int f = S.col_start[s], w = S.col_start[s + 1] - f, m = S.row_start[s + 1] - S.row_start[s];
       const double* U = values.get() + S.value_start[s];
       for (int k = 0; k < w; ++k) inv_diag[f + k] = 1.0 / U[k + int64_t{w} * k];
-      nonzeros += int64_t{w} * m - int64_t{w} * (w - 1) / 2;
+      nonzeros += supernode_nonzeros(w, m);
     }
     std::vector<double> top_sums(3 * static_cast<size_t>(kFactorParts) * (n - S.top_col), 0.0);
     // The elimination tree of the supernodes: a supernode's parent holds its first row below the
@@ -260,8 +264,7 @@ void CholeskySolver::solve_planned_in_place(double* y, const std::vector<int>& p
 long long CholeskySolver::plan_nonzeros(const std::vector<int>& plan) const {
   long long nonzeros = 0;
   for (int t : plan) {
-    const int w = col_start_[t + 1] - col_start_[t], m = row_start_[t + 1] - row_start_[t];
-    nonzeros += int64_t{w} * m - int64_t{w} * (w - 1) / 2;
+    nonzeros += supernode_nonzeros(col_start_[t + 1] - col_start_[t], row_start_[t + 1] - row_start_[t]);
   }
   return nonzeros;
 }
