@@ -31,3 +31,48 @@ def test_written_positions_are_the_vertices(addon):
     out = np.empty_like(moved)
     addon.mesh_io.read_base_coords(mesh, out)
     assert np.array_equal(out, moved)
+
+
+def _faces_read_apart(mesh_io, mesh):
+    """The loop triangles and the corners, each read from Blender on its own (the reference route)."""
+    return tuple(mesh_io.read_loop_triangles(mesh)) + tuple(mesh_io.read_corners(mesh))
+
+
+def _triangulated(obj):
+    import bmesh
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    bmesh.ops.triangulate(bm, faces=bm.faces[:])
+    bm.to_mesh(obj.data)
+    bm.free()
+    obj.data.update()
+    return obj
+
+
+def test_faces_read_together_are_the_triangles_and_corners_read_apart(addon):
+    """read_faces derives the corners from the loop triangles (a mesh of triangles reads nothing more):
+    on triangles, quads with triangle fans (the UV sphere), n-gon caps, Suzanne's mix, and a mesh
+    whose polygons were taken apart and re-made (loops re-ordered), it gives what the two reads give."""
+    mesh_io = addon.mesh_io
+    shuffled = helpers.suzanne(levels=0)
+    import bmesh
+    bm = bmesh.new()
+    bm.from_mesh(shuffled.data)
+    bm.faces.ensure_lookup_table()
+    for face in list(bm.faces)[::3]:  # re-made faces go to the end: polygons and corners in a new order
+        verts = face.verts[:]
+        bm.faces.remove(face)
+        bm.faces.new(verts[1:] + verts[:1])
+    bm.to_mesh(shuffled.data)
+    bm.free()
+    meshes = {"triangles": _triangulated(helpers.uv_sphere()), "uv sphere": helpers.uv_sphere(),
+              "n-gon caps": helpers.capped_cylinder(), "suzanne": helpers.suzanne(levels=1),
+              "re-made faces": shuffled}
+    for label, obj in meshes.items():
+        together, apart = mesh_io.read_faces(obj.data), _faces_read_apart(mesh_io, obj.data)
+        assert len(together) == len(apart) == 5
+        for what, a, b in zip(("triangles", "tri_polygon", "corner_vertex", "corner_polygon", "sides"),
+                              together, apart):
+            assert a.dtype == b.dtype and np.array_equal(a, b), (label, what)
+    arrays = mesh_io.MeshArrays(meshes["triangles"].data)
+    assert arrays.corner_vertex.base is None  # its own array, not a view of the triangles

@@ -29,8 +29,8 @@ class MeshArrays:
         self.num_polygons = len(mesh.polygons)
         self.coords = np.empty((self.num_vertices, 3), np.float32)
         read_base_coords(mesh, self.coords)
-        self.triangles, self.tri_polygon = read_loop_triangles(mesh)
-        self.corner_vertex, self.corner_polygon, self.polygon_sides = read_corners(mesh)
+        (self.triangles, self.tri_polygon, self.corner_vertex, self.corner_polygon,
+         self.polygon_sides) = read_faces(mesh)
 
     def polygon_average(self, vertex_values):
         """Mean of a per-vertex float array over each polygon's corners."""
@@ -106,6 +106,38 @@ def read_loop_triangles(mesh):
     mesh.loop_triangles.foreach_get("vertices", triangles.reshape(-1))
     mesh.loop_triangles.foreach_get("polygon_index", tri_polygon)
     return triangles, tri_polygon
+
+
+def read_faces(mesh):
+    """read_loop_triangles() and read_corners() together: (triangles, tri_polygon, corner_vertex,
+    corner_polygon, polygon_sides), the corners derived from the loop triangles where that is exact.
+
+    Reading the corners from Blender costs as much as reading the triangles (0.9 s against 0.7 s for
+    4M triangles in 3.4; docs/performance.md#sculpt-scale), and the triangles hold them: Blender lists
+    loop triangles polygon by polygon, and a triangle's in its corner order. So a mesh of triangles
+    reads nothing more; other meshes read each triangle's corners (loops) and scatter, and fall back
+    to read_corners() where the polygons' corners are not contiguous and in order.
+    """
+    mesh.calc_loop_triangles()
+    num_polygons, num_loops, count = len(mesh.polygons), len(mesh.loops), len(mesh.loop_triangles)
+    triangles = np.empty((count, 3), np.int32)
+    mesh.loop_triangles.foreach_get("vertices", triangles.reshape(-1))
+    if count == num_polygons and num_loops == 3 * count:  # a polygon has at least one triangle: all are triangles
+        tri_polygon = np.arange(count, dtype=np.int32)
+        return (triangles, tri_polygon, triangles.reshape(-1).copy(), np.repeat(tri_polygon, 3),
+                np.full(count, 3, np.int32))
+    tri_polygon = np.empty(count, np.int32)
+    tri_loops = np.empty(3 * count, np.int32)
+    mesh.loop_triangles.foreach_get("polygon_index", tri_polygon)
+    mesh.loop_triangles.foreach_get("loops", tri_loops)
+    loop_polygon = np.full(num_loops, -1, np.int32)
+    loop_polygon[tri_loops] = np.repeat(tri_polygon, 3)
+    if num_loops and (loop_polygon[0] < 0 or np.any(np.diff(loop_polygon) < 0)):  # -1 first if any corner is in no triangle
+        return (triangles, tri_polygon) + read_corners(mesh)
+    loop_vertex = np.empty(num_loops, np.int32)
+    loop_vertex[tri_loops] = triangles.reshape(-1)
+    sides = np.bincount(loop_polygon, minlength=num_polygons).astype(np.int32)
+    return triangles, tri_polygon, loop_vertex, loop_polygon, sides
 
 
 def read_corners(mesh):
