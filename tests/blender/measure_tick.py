@@ -60,7 +60,10 @@ def main():
     sys.path.insert(0, os.path.join(build, "addon"))
     import gauss_stylization
     gauss_stylization.register()
-    bpy.ops.wm.obj_import(filepath=os.path.join(REPO, "..", "shared", "meshes", mesh))
+    path = mesh if os.path.isfile(mesh) else os.path.join(REPO, "..", "shared", "meshes", mesh)
+    if not os.path.isfile(path):
+        sys.exit("measure_tick: no mesh %s (a path, or one relative to ../shared/meshes)" % mesh)
+    bpy.ops.wm.obj_import(filepath=path)
     obj = bpy.context.selected_objects[0]
     bpy.context.view_layer.objects.active = obj
     # The smallest Tolerance, so every tick measured takes a step (a converged object takes none).
