@@ -71,9 +71,11 @@ def markdown_table(records):
 
 def _guard_findings(r, by_cell):
     found = []
-    if r["stopped"] and (r.get("held_back") or r["held_last"]):
-        found.append(f"the guard stopped the run ({r['held_last']} vertices held back in its last step)"
-                     f"{', and it reports converged' if r['converged'] else ''}")
+    if r["stopped"] and r.get("held_back"):
+        found.append(f"the guard stopped the run ({r['held_last']} vertices held back in its last step)")
+    if r["converged"] and r.get("unguarded_still") is False:
+        found.append(f"it reports converged with {r['held_last']} vertices held back in its last step, but a step "
+                     f"without the guard then moves reldV {r['unguarded_reldv']:.2g}")
     if r["held_max"] >= r["vertices"]:
         found.append(f"the guard held every vertex ({r['held_max']}) back at some step")
     if r.get("new_pairs"):

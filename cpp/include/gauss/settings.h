@@ -244,8 +244,8 @@ constexpr auto solver_readouts() {
               "changed since; False while held_back."),
       readout("held_back", &Solver::held_back,
               "The run stopped moving because avoid_self_intersections holds it, not because it converged: the\n"
-              "last step moved less than the tolerance, but its held vertices (held_vertices) would have moved\n"
-              "more without the guard. step_until stops here as at convergence."),
+              "last step moved less than the tolerance, but with what the guard held back of its vertices\n"
+              "(held_vertices) it may have moved the tolerance or more. step_until stops here as at convergence."),
       readout("held_vertices", &Solver::held_vertices,
               "Vertices avoid_self_intersections held back in the last step or pin move (0 when it is off)."),
       readout("step_count", &Solver::step_count, "Steps since the set-up or the last reset()."),

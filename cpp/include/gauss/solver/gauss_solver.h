@@ -153,8 +153,10 @@ class GaussSolver {
   // Which: held_vertices() vertex indices (caller's numbering, ascending); empty when the guard is off.
   std::vector<int> held_vertex_indices() const;
   // The run has stopped moving because the guard holds it, not because it converged: the last step
-  // moved less than the tolerance, but without the guard its held vertices would have moved more.
-  bool held_back() const { return last_reldv() < tolerance_ && denied_reldv_ >= tolerance_; }
+  // moved less than the tolerance, but without the guard it may not have. The step's own result is the
+  // guarded one plus what the guard denied, so its reldV is at most last_reldv plus the denied part's:
+  // only below the tolerance is the run converged whatever the guard did.
+  bool held_back() const { return last_reldv() < tolerance_ && last_reldv() + denied_reldv_ >= tolerance_; }
 
   // --- Method: the next step's local step; pins, styles and the factorization stay. ---
   // The first switch to Method::cubic prepares its per-vertex data (O(#V), no factorization). With it,
