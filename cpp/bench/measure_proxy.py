@@ -36,10 +36,10 @@ def peak_mb():
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
 
-def run(V, F, style, lam, cap, start=None):
+def run(V, F, style, lam, cap, start=None, tol=1e-3):
     """(solver, steps, seconds to converge, set-up seconds) of a run until converged from `start`."""
     t = time.perf_counter()
-    solver = gauss_core.Solver(V, F, lam=lam)
+    solver = gauss_core.Solver(V, F, lam=lam, tolerance=tol)
     solver.set_styles([style])
     setup = time.perf_counter() - t
     if start is not None:
@@ -60,6 +60,7 @@ def main():
     ap.add_argument("--lam", type=float, default=4.0)
     ap.add_argument("--style", default="cube", choices=gauss_core.PRESETS)
     ap.add_argument("--cap", type=int, default=1000)
+    ap.add_argument("--tol", type=float, default=1e-3, help="--compare: the tolerance both full-resolution runs step to")
     args = ap.parse_args()
 
     if args.mesh:
@@ -116,10 +117,10 @@ def main():
     small.vertices_into(proxy_now)
     proxy.transfer(proxy_now, out)
     transferred = out.astype(np.float64)
-    warm, warm_steps, warm_s, full_setup = run(V, F, style, args.lam, args.cap, start=transferred)
+    warm, warm_steps, warm_s, full_setup = run(V, F, style, args.lam, args.cap, start=transferred, tol=args.tol)
     finished = warm.vertices
     del warm
-    scratch, scratch_steps, scratch_s, _ = run(V, F, style, args.lam, args.cap)
+    scratch, scratch_steps, scratch_s, _ = run(V, F, style, args.lam, args.cap, tol=args.tol)
     reference = scratch.vertices
     del scratch
     shares = [style_share(x, F, style) for x in (V, reference, transferred, finished)]
