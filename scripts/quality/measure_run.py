@@ -38,6 +38,21 @@ def crossing_pairs(V, F):
     return {tuple(p) for p in gauss_core.self_intersections(V, F).tolist()}
 
 
+def next_to_input_crossings(F, pairs_in, pairs):
+    """How many of `pairs` have both faces with a corner on, or one edge from, a face of the input's
+    crossing pairs: where the guard lets a crossing the input had slide on (self_intersection.h)."""
+    faces = np.array(sorted({f for pair in pairs_in for f in pair}), np.int64)
+    if not len(pairs) or not len(faces):
+        return 0
+    near = np.zeros(int(F.max()) + 1, bool)
+    near[F[faces].ravel()] = True
+    edges = F[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    ring = near.copy()
+    ring[edges[near[edges[:, 0]], 1]] = True
+    ring[edges[near[edges[:, 1]], 0]] = True
+    return sum(1 for f, g in pairs if ring[F[f]].any() and ring[F[g]].any())
+
+
 def mesh_kind(V, F):
     """'broken' (a face without area, an edge of more than two faces), 'boundary' (an edge of one face)
     or 'closed'."""
@@ -110,7 +125,9 @@ def run_option(option, V, F, pairs_in):
         record["unguarded_still"] = bool(solver.last_reldv < TOLERANCE)
     if finite:
         pairs_out = crossing_pairs(W, F)
-        record.update(pairs_out=len(pairs_out), new_pairs=len(pairs_out - pairs_in))
+        new = pairs_out - pairs_in
+        record.update(pairs_out=len(pairs_out), new_pairs=len(new),
+                      new_pairs_sliding=next_to_input_crossings(F, pairs_in, new))
     if weights is not None and len(weights) and (weights == weights[0, 0]).all():
         record["uniform_weight"] = float(weights[0, 0])
     if weights is not None and finite and (weights <= 0.2).any() and (weights >= 0.8).any():

@@ -91,3 +91,19 @@ def test_a_worker_that_crashes_costs_one_record_and_the_mesh_goes_on(monkeypatch
     assert [r["option"] for r in records] == ["cube", crash_on, "cubic"]
     assert "exit code -11" in records[1]["crash"] and records[1]["kind"] == "closed"
     assert "error" in records[0] and "error" in records[2]
+
+
+def test_new_pairs_next_to_the_input_crossings_are_told_from_the_others():
+    """A crossing the input had may slide on to the faces around it (the guard allows that); the
+    matrix counts such new pairs apart, and only those: a pair two rings away is not one of them."""
+    import numpy as np
+    sys.path.insert(0, str(BUILD / "python"))
+    import measure_run
+    # A strip of triangles along x: face 2k = (k, k+1, k+100), face 2k+1 = (k+1, k+101, k+100).
+    F = np.array([f for k in range(30) for f in ((k, k + 1, k + 100), (k + 1, k + 101, k + 100))])
+    pairs_in = {(0, 40)}  # faces 0 and 40 (columns 0 and 20) crossed in the input
+    near = {(1, 41), (2, 39)}  # each face shares a corner with, or is one edge from, a face of that pair
+    far = {(10, 41), (1, 50)}  # face 10 (column 5) and face 50 (column 25) are rings away from it
+    assert measure_run.next_to_input_crossings(F, pairs_in, near) == 2
+    assert measure_run.next_to_input_crossings(F, pairs_in, far) == 0
+    assert measure_run.next_to_input_crossings(F, set(), near) == 0
