@@ -5,6 +5,7 @@ copies them one by one: on a 1M-vertex mesh 238 ms against 4 ms through the attr
 (docs/performance.md#sculpt-scale), so a live tick must write through the attribute.
 """
 
+import bmesh
 import bpy
 import numpy as np
 
@@ -39,7 +40,6 @@ def _faces_read_apart(mesh_io, mesh):
 
 
 def _triangulated(obj):
-    import bmesh
     bm = bmesh.new()
     bm.from_mesh(obj.data)
     bmesh.ops.triangulate(bm, faces=bm.faces[:])
@@ -49,13 +49,28 @@ def _triangulated(obj):
     return obj
 
 
+def _corners_out_of_order():
+    """Two quads whose corners are stored second polygon first (Blender 3.4 keeps such loop starts;
+    later versions store the polygons' corners in order, whatever is asked): read_faces must fall back
+    to reading the corners."""
+    mesh = bpy.data.meshes.new("corners out of order")
+    mesh.vertices.add(6)
+    mesh.vertices.foreach_set("co", [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 2, 0, 0, 2, 1, 0])
+    mesh.loops.add(8)
+    mesh.loops.foreach_set("vertex_index", [0, 1, 2, 3, 1, 4, 5, 2])
+    mesh.polygons.add(2)
+    mesh.polygons.foreach_set("loop_start", [4, 0])
+    mesh.polygons.foreach_set("loop_total", [4, 4])
+    mesh.update(calc_edges=True)
+    return mesh
+
+
 def test_faces_read_together_are_the_triangles_and_corners_read_apart(addon):
     """read_faces derives the corners from the loop triangles (a mesh of triangles reads nothing more):
     on triangles, quads with triangle fans (the UV sphere), n-gon caps, Suzanne's mix, and a mesh
     whose polygons were taken apart and re-made (loops re-ordered), it gives what the two reads give."""
     mesh_io = addon.mesh_io
     shuffled = helpers.suzanne(levels=0)
-    import bmesh
     bm = bmesh.new()
     bm.from_mesh(shuffled.data)
     bm.faces.ensure_lookup_table()
@@ -65,14 +80,14 @@ def test_faces_read_together_are_the_triangles_and_corners_read_apart(addon):
         bm.faces.new(verts[1:] + verts[:1])
     bm.to_mesh(shuffled.data)
     bm.free()
-    meshes = {"triangles": _triangulated(helpers.uv_sphere()), "uv sphere": helpers.uv_sphere(),
-              "n-gon caps": helpers.capped_cylinder(), "suzanne": helpers.suzanne(levels=1),
-              "re-made faces": shuffled}
-    for label, obj in meshes.items():
-        together, apart = mesh_io.read_faces(obj.data), _faces_read_apart(mesh_io, obj.data)
+    meshes = {"triangles": _triangulated(helpers.uv_sphere()).data, "uv sphere": helpers.uv_sphere().data,
+              "n-gon caps": helpers.capped_cylinder().data, "suzanne": helpers.suzanne(levels=1).data,
+              "re-made faces": shuffled.data, "corners out of order": _corners_out_of_order()}
+    for label, mesh in meshes.items():
+        together, apart = mesh_io.read_faces(mesh), _faces_read_apart(mesh_io, mesh)
         assert len(together) == len(apart) == 5
         for what, a, b in zip(("triangles", "tri_polygon", "corner_vertex", "corner_polygon", "sides"),
                               together, apart):
             assert a.dtype == b.dtype and np.array_equal(a, b), (label, what)
-    arrays = mesh_io.MeshArrays(meshes["triangles"].data)
+    arrays = mesh_io.MeshArrays(meshes["triangles"])
     assert arrays.corner_vertex.base is None  # its own array, not a view of the triangles

@@ -218,11 +218,12 @@ def save_during_a_bake(name):
         yield 0.1
     # Once (on CI, under load) this read frame 7 with the bake going on: what each scene showed is
     # printed, to tell a stale scene reference from a frame the bake put back.
+    seen = "frame %d, the window's scene at %d" % (scene.frame_current, window().scene.frame_current)
+    if bake is not None:
+        seen += ", the bake's scene (%s) at %d; %d frames done" % (bake._job.scene.name, bake._job.scene.frame_current,
+                                                                  bake._job.done)
     check("a bake from the UI runs in the background and moves the scene frame",
-          started == {'RUNNING_MODAL'} and bake is not None and scene.frame_current != 7,
-          "frame %d; bake's scene %s at %s, window's at %d; %s frames done" % (
-              scene.frame_current, *((bake._job.scene.name, bake._job.scene.frame_current) if bake else ("-", "-")),
-              window().scene.frame_current, bake._job.done if bake else "no bake,"))
+          started == {'RUNNING_MODAL'} and bake is not None and scene.frame_current != 7, seen)
     new_reports()
     press('S', *viewport_point(), ctrl=True)
     yield 0.5

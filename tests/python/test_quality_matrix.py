@@ -6,6 +6,8 @@ import os
 import subprocess
 import sys
 
+import numpy as np
+
 from conftest import BUILD, REPO
 from meshes import icosphere
 
@@ -96,8 +98,7 @@ def test_a_worker_that_crashes_costs_one_record_and_the_mesh_goes_on(monkeypatch
 def test_new_pairs_next_to_the_input_crossings_are_told_from_the_others():
     """A crossing the input had may slide on to the faces around it (the guard allows that); the
     matrix counts such new pairs apart, and only those: a pair two rings away is not one of them."""
-    import numpy as np
-    sys.path.insert(0, str(BUILD / "python"))
+    sys.path.insert(0, str(BUILD / "python"))  # measure_run imports gauss_core
     import measure_run
     # A strip of triangles along x: face 2k = (k, k+1, k+100), face 2k+1 = (k+1, k+101, k+100).
     F = np.array([f for k in range(30) for f in ((k, k + 1, k + 100), (k + 1, k + 101, k + 100))])
