@@ -25,15 +25,19 @@ using Clock = std::chrono::steady_clock;
 
 // Memory the solver keeps per face (topology, rest quantities, ADMM buffers, edges) and per vertex,
 // rounded down from its members' sizes, for the early memory check. Per face, counting 1.5 edges a
-// face: topology 73 bytes, rest quantities 148, styles 12, step buffers 164 (397 in all); per vertex:
+// face: topology 73 bytes, rest quantities 44, styles 12, step buffers 164 (293 in all); per vertex:
 // numbering and topology 12, positions 72, rotations 104, the iteration's 81, the constrained
 // system's 56 (325; the factor is checked on its own).
-constexpr int64_t kSetupBytesPerFace = 360, kSetupBytesPerVertex = 320;
+constexpr int64_t kSetupBytesPerFace = 280, kSetupBytesPerVertex = 320;
 
 // Bending stiffness per unit area and squared curvature, of ARAP (per unit face area: kArapBending a
 // kappa^2) and of the term sum_ij w_ij |R_i - R_j|^2 (kSmoothBending kappa^2), from a triangle lattice
 // bent into a cylinder (docs/resolution.md#bending-araps-stiffness-shrinks-with-the-edge-length).
 constexpr double kArapBending = 0.63, kSmoothBending = 2.0;
+
+// With resolution_independent, a face of zero rest area gets the coupling of one a 1e6th of the
+// reference's: it stays put, as such faces should, and the factor stays finite.
+constexpr double kMinAreaRatio = 1e-6;
 
 // Square Flat Regions' pull per unit area of a face (flat_regions.h), against ARAP's covariance, which a
 // face's area alone scales: strong enough to turn the walls of a round cap's rim to its axes at the
@@ -123,6 +127,9 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
 
   compute_rest_quantities();
   progress.check();
+  // The factorization first, then the step's buffers: the factorization's peak (the factor in
+  // doubles and the analysis's scratch) does not stack on them.
+  apply_pins(pinned, pin_positions, progress);
   const int nF = static_cast<int>(topo_.faces.size());
   normal_star_.assign(nF, Vector3d::UnitZ());
   dual_.assign(nF, {0, 0, 0});
@@ -136,14 +143,12 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   styles_.emplace_back(default_style());
   face_style_.assign(nF, 0);
   face_weight_.assign(nF, 1.0);
-  apply_pins(pinned, pin_positions, progress);
   progress.finish();
 }
 
 void GaussSolver::compute_rest_quantities() {
   const int nF = static_cast<int>(topo_.faces.size());
   slot_weight_.resize(nF);
-  slot_rest_.resize(nF);
   edge_weight_.assign(topo_.edges.size(), 0.0);
   face_area_.resize(nF);
   for (int f = 0; f < nF; ++f) {
@@ -153,46 +158,36 @@ void GaussSolver::compute_rest_quantities() {
     face_area_[f] = 0.5 * e[0].cross(e[1]).norm();
     const TriangleWeights tw = cotangent_weights(e);
     for (int k = 0; k < 3; ++k) {
-      const double w = tw.w[k];
-      slot_weight_[f][k] = w;
-      slot_rest_[f][k] = w * e[k];
-      edge_weight_[topo_.face_edge[f][k]] += w;
+      slot_weight_[f][k] = tw.w[k];
+      edge_weight_[topo_.face_edge[f][k]] += tw.w[k];
     }
   }
-  slot_edge_weight_.resize(nF);
-  for (int f = 0; f < nF; ++f)
-    for (int k = 0; k < 3; ++k) slot_edge_weight_[f][k] = edge_weight_[topo_.face_edge[f][k]];
   update_face_coupling();
 }
 
+double GaussSolver::face_coupling(int f) const {
+  if (!resolution_independent_) return 1.0;
+  return reference_face_area_ / std::max(face_area_[f], kMinAreaRatio * reference_face_area_);
+}
+
 void GaussSolver::update_face_coupling() {
-  const int nF = static_cast<int>(topo_.faces.size());
-  face_coupling_.assign(nF, 1.0);
   if (!resolution_independent_) {
-    bending_weight_ = {};
+    bending_beta_ = {};
     rotation_prior_ = {};
     return;
   }
+  const int nF = static_cast<int>(topo_.faces.size());
   const double a_ref = reference_face_area_;
-  // A face of zero rest area gets the coupling of one a 1e6th of the reference's: it stays put, as
-  // such faces should, and the factor stays finite.
-  constexpr double kMinAreaRatio = 1e-6;
-  for (int f = 0; f < nF; ++f) face_coupling_[f] = a_ref / std::max(face_area_[f], kMinAreaRatio * a_ref);
   // The bending term's beta at each vertex tops ARAP's own bending stiffness (kArapBending a kappa^2 per
   // unit area, a the local face area) up to the reference's: beta = kArapBending / kSmoothBending *
   // (a_ref - a), none where the mesh is coarser than the reference (docs/resolution.md).
-  std::vector<double> area(topo_.num_vertices, 0.0), beta(topo_.num_vertices, 0.0);
+  std::vector<double> area(topo_.num_vertices, 0.0);
   std::vector<int> count(topo_.num_vertices, 0);
   for (int f = 0; f < nF; ++f)
     for (int v : topo_.faces[f]) area[v] += face_area_[f], ++count[v];
+  bending_beta_.assign(topo_.num_vertices, 0.0);
   for (int v = 0; v < topo_.num_vertices; ++v)
-    if (count[v] > 0) beta[v] = kArapBending / kSmoothBending * std::max(0.0, a_ref - area[v] / count[v]);
-  bending_weight_.resize(nF);
-  for (int f = 0; f < nF; ++f) {
-    const auto& t = topo_.faces[f];
-    for (int k = 0; k < 3; ++k)  // negative cotangent weights would reward bending: left out
-      bending_weight_[f][k] = 0.5 * (beta[t[k]] + beta[t[(k + 1) % 3]]) * std::max(0.0, slot_weight_[f][k]);
-  }
+    if (count[v] > 0) bending_beta_[v] = kArapBending / kSmoothBending * std::max(0.0, a_ref - area[v] / count[v]);
 }
 
 void GaussSolver::face_pass() {
@@ -214,14 +209,14 @@ void GaussSolver::face_pass() {
     dual_[f] = {0, 0, 0};
     if (face_mu_[f] > 0.0) {
       // The sign of e*_ij does not matter while u = 0 (both terms are even in e*).
-      const double lam_f = lam * face_coupling_[f];  // == lam when resolution_independent is off
-      const double lw[3] = {lam_f * slot_edge_weight_[f][0], lam_f * slot_edge_weight_[f][1],
-                            lam_f * slot_edge_weight_[f][2]};
+      const double lam_f = lam * face_coupling(f);  // == lam when resolution_independent is off
+      const auto& fe = topo_.face_edge[f];
+      const double lw[3] = {lam_f * edge_weight_[fe[0]], lam_f * edge_weight_[fe[1]], lam_f * edge_weight_[fe[2]]};
       normal_star_[f] = normal_update(f, s, c / len, e, lw, zero);
     }
-    Matrix3d cov = e[0] * slot_rest_[f][0].transpose();
-    cov.noalias() += e[1] * slot_rest_[f][1].transpose();
-    cov.noalias() += e[2] * slot_rest_[f][2].transpose();
+    Matrix3d cov = e[0] * slot_rest(f, 0).transpose();
+    cov.noalias() += e[1] * slot_rest(f, 1).transpose();
+    cov.noalias() += e[2] * slot_rest(f, 2).transpose();
     face_scratch_[f] = cov;
   });
 }
@@ -292,14 +287,20 @@ const Matrix3d* GaussSolver::rotation_prior() {
   rotation_prior_.resize(nV);
   parallel::for_each(nV, parallel::kMinParallelItems, [&](int v) {
     Matrix3d P = Matrix3d::Zero();
-    if (resolution_independent_)
+    if (resolution_independent_) {
+      const double beta_v = bending_beta_[v];
       for (int i = topo_.vertex_corner_start[v]; i < topo_.vertex_corner_start[v + 1]; ++i) {
-        const int c = topo_.vertex_corners[i], f = c / 3, k = c % 3;
+        const int c = topo_.vertex_corners[i], f = c / 3, k = c % 3, k1 = (k + 1) % 3, k2 = (k + 2) % 3;
         const auto& t = topo_.faces[f];
-        // Corner k heads slot k (to corner k+1) and ends slot k+2 (from corner k+2).
-        P += (factor * bending_weight_[f][k]) * rotation_[t[(k + 1) % 3]];
-        P += (factor * bending_weight_[f][(k + 2) % 3]) * rotation_[t[(k + 2) % 3]];
+        // Corner k heads slot k (to corner k+1) and ends slot k+2 (from corner k+2). A slot's weight
+        // is beta w+: its ends' mean beta times its cotangent weight, negative ones left out (they
+        // would reward bending).
+        const double w_out = 0.5 * (beta_v + bending_beta_[t[k1]]) * std::max(0.0, slot_weight_[f][k]);
+        const double w_in = 0.5 * (bending_beta_[t[k2]] + beta_v) * std::max(0.0, slot_weight_[f][k2]);
+        P += (factor * w_out) * rotation_[t[k1]];
+        P += (factor * w_in) * rotation_[t[k2]];
       }
+    }
     if (square_flat_regions_) P += factor * square_prior_[v];  // its pull, in ARAP's units like the bending
     rotation_prior_[v] = P;
   });
@@ -318,9 +319,8 @@ void GaussSolver::admm_round(bool first_round) {
       const auto& fe = topo_.face_edge[f];
       const Vector3d es[3] = {edge_star_[fe[0]], edge_star_[fe[1]], edge_star_[fe[2]]};
       for (int k = 0; k < 3; ++k) dual_[f][k] += es[k].dot(n);
-      const double lam_f = lam * face_coupling_[f];
-      const double lw[3] = {lam_f * slot_edge_weight_[f][0], lam_f * slot_edge_weight_[f][1],
-                            lam_f * slot_edge_weight_[f][2]};
+      const double lam_f = lam * face_coupling(f);
+      const double lw[3] = {lam_f * edge_weight_[fe[0]], lam_f * edge_weight_[fe[1]], lam_f * edge_weight_[fe[2]]};
       normal_star_[f] = normal_update(f, face_style_[f], n, es, lw, dual_[f].data());
     });
   }
@@ -405,7 +405,7 @@ void GaussSolver::assemble_rhs(Rhs terms) {
     const Matrix3d Rf = (rotation_[t[0]] + rotation_[t[1]] + rotation_[t[2]]) * (1.0 / 3.0);
     Vector3d d[3];
     for (int k = 0; k < 3; ++k) {
-      d[k] = Rf * slot_rest_[f][k];
+      d[k] = Rf * slot_rest(f, k);
       if (terms == Rhs::arap) continue;
       const double s = topo_.face_edge_sign[f][k];
       d[k] = (d[k] + (lam * slot_weight_[f][k] * s) * edge_star_[topo_.face_edge[f][k]]) * inv;

@@ -61,7 +61,7 @@ double GaussSolver::arap_energy() const {
     for (int i = begin; i < end; ++i) {
       const int f = topo_.vertex_corners[i] / 3;
       const auto& t = topo_.faces[f];
-      for (int k = 0; k < 3; ++k) M += (X_[t[(k + 1) % 3]] - X_[t[k]]) * slot_rest_[f][k].transpose();
+      for (int k = 0; k < 3; ++k) M += (X_[t[(k + 1) % 3]] - X_[t[k]]) * slot_rest(f, k).transpose();
     }
     const Matrix3d R = closest_rotation(M);
     double sum = 0;

@@ -218,7 +218,15 @@ class GaussSolver {
 
  private:
   void compute_rest_quantities();
-  void update_face_coupling();  // face_coupling_ from face_area_ and resolution_independent_
+  void update_face_coupling();  // bending_beta_ from face_area_ and resolution_independent_
+  // Slot k of face f (the edge from its corner k to corner k+1): its weight times its rest vector.
+  Eigen::Vector3d slot_rest(int f, int k) const {
+    const auto& t = topo_.faces[f];
+    return slot_weight_[f][k] * (rest_[t[(k + 1) % 3]] - rest_[t[k]]);
+  }
+  // The factor of lambda in face f's normal step: 1, or with resolution_independent the reference
+  // area over the face's (docs/resolution.md).
+  double face_coupling(int f) const;
   void update_square_prior();   // square_prior_ from square_ and the faces' styles (when on)
   // set_pins' work inside a set-up that `progress` already reports (the constructor's or set_pins').
   // Moves the pinned vertices to their targets; with the guard on, short of new contacts.
@@ -278,13 +286,12 @@ class GaussSolver {
   std::vector<Eigen::Vector3d> rest_, X_;  // normalized frame
 
   // Rest quantities.
+  // Whatever follows from these in a few operations is computed where it is used (slot_rest(),
+  // face_coupling(), the bending term's slot weights), not stored: at sculpt scale every 8 bytes a face is 32 MB.
   std::vector<std::array<double, 3>> slot_weight_;    // #F by 3: cot(opposite angle) / 2
-  std::vector<std::array<Eigen::Vector3d, 3>> slot_rest_;  // #F by 3: weight * rest edge vector
   std::vector<double> edge_weight_;                  // #E: sum of the slot weights of the edge
-  std::vector<std::array<double, 3>> slot_edge_weight_;  // #F by 3: edge_weight_ of each slot (locality)
   std::vector<double> face_area_;                   // #F: rest area
-  std::vector<double> face_coupling_;               // #F: factor of lambda in the normal step (1 when off)
-  std::vector<std::array<double, 3>> bending_weight_;  // #F by 3 while resolution_independent: beta w+ per slot
+  std::vector<double> bending_beta_;                 // #V while resolution_independent: beta (else empty)
   std::vector<Eigen::Matrix3d> rotation_prior_;       // #V while either pull is on: the rotation fit's prior
   bool square_flat_regions_ = settings::square_flat_regions.default_value;
   SquareTargets square_;                              // while square_flat_regions: the regions and targets
