@@ -144,6 +144,49 @@ TEST(CholeskySolver, MeshLaplaciansWithPinsMatchSimplicialLDLT) {
   }
 }
 
+TEST(CholeskySolver, SinglePrecisionFactorIsRefinedToDoubleAccuracy) {
+  // Floats for L's values (what sculpt-sized meshes get), refined once against A: the solution as
+  // exact as in doubles to a few digits, one and two threads bit for bit, and a planned solve (not
+  // refined) within single precision of the whole one.
+  const gauss::TriangleMesh small = gauss_test::icosphere(4), large = gauss_test::grid_cube(100);
+  for (const gauss::TriangleMesh* m : {&small, &large}) {
+    const SpMat A = mesh_laplacian(*m, {0, 5, m->num_vertices() / 2}, 3);
+    SCOPED_TRACE("vertices " + std::to_string(m->num_vertices()));
+    std::vector<double> X[2];
+    for (int threads : {1, 2}) {
+      const gauss::parallel::ScopedThreads scoped(threads);
+      gauss::CholeskySolver s;
+      s.factor(A, nullptr, gauss::CholeskySolver::Precision::single_values);
+      ASSERT_TRUE(s.single_precision());
+      expect_matches_eigen(A, s, 1e-9);
+      X[threads - 1] = solve(s, right_hand_side(s.size(), 5));
+      if (threads == 2) {
+        gauss::CholeskySolver d;
+        d.factor(A);
+        EXPECT_FALSE(d.single_precision());  // automatic: doubles below kSinglePrecisionUnknowns
+        const std::vector<double> exact = solve(d, right_hand_side(s.size(), 5));
+        // Unrefined, the single factor's solve is off by 5e-8 to 9e-8 here (its residual 5e-7 to
+        // 2e-5): the refinement is what brings both within 1e-9.
+        double scale = 0, diff = 0;
+        for (size_t i = 0; i < exact.size(); ++i)
+          scale = std::max(scale, std::abs(exact[i])), diff = std::max(diff, std::abs(exact[i] - X[1][i]));
+        EXPECT_LT(diff / scale, 1e-9);
+        const int n = s.size();
+        std::vector<double> Y(3 * static_cast<size_t>(n), 0.0);
+        const int row = s.position(n / 3);
+        for (int k = 0; k < 3; ++k) Y[3 * row + k] = 1.0 + k;
+        std::vector<double> whole = Y;
+        d.solve_ordered_in_place(whole.data());
+        std::vector<int> plan;
+        s.plan_sparse(&row, 1, plan);
+        s.solve_planned_in_place(Y.data(), plan);
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(Y[3 * row + k], whole[3 * row + k], 1e-6 * std::abs(whole[3 * row + k]));
+      }
+    }
+    EXPECT_EQ(std::memcmp(X[0].data(), X[1].data(), X[0].size() * sizeof(double)), 0);
+  }
+}
+
 TEST(CholeskySolver, PlannedSolveGivesTheWholeSolveAtItsRows) {
   // A right-hand side nonzero in a few rows (contact springs' forces): the solve restricted to the
   // elimination tree's paths above them gives the whole solve's values there, for part of its cost.

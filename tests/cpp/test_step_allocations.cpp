@@ -99,6 +99,35 @@ TEST(StepAllocations, StepsDoNotAllocate) {
   EXPECT_EQ(g_allocations.load() - before_resolution_gauss, 0);
 }
 
+TEST(StepAllocations, SculptScaleStepsDoNotAllocate) {
+  // What a mesh of a million vertices or more gets (shown here on a small one): steps without the
+  // per-face scratch, and a global solve on a factor in floats refined against A, whose scratch is
+  // made with the factor.
+  const gauss::TriangleMesh m = gauss_test::icosphere(5);
+  gauss::GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), {0, 17});
+  s.set_styles({gauss::PreferenceFunction(gauss::preset_style("cube"))});
+  s.set_keep_face_scratch(false);
+  s.set_resolution_independent(true);
+  for (int i = 0; i < 3; ++i) s.step();
+  const long before = g_allocations.load();
+  for (int i = 0; i < 5; ++i) s.step();
+  EXPECT_EQ(g_allocations.load() - before, 0);
+
+  Eigen::SparseMatrix<double> A(300, 300);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < 300; ++i) {
+    entries.emplace_back(i, i, 4.0);
+    if (i > 0) entries.emplace_back(i, i - 1, -1.0);
+  }
+  A.setFromTriplets(entries.begin(), entries.end());
+  gauss::CholeskySolver single;
+  single.factor(A, nullptr, gauss::CholeskySolver::Precision::single_values);
+  std::vector<double> y(3 * 300, 1.0);
+  const long before_solve = g_allocations.load();
+  single.solve_ordered_in_place(y.data());
+  EXPECT_EQ(g_allocations.load() - before_solve, 0);
+}
+
 TEST(StepAllocations, SheetMetalStepsDoNotAllocate) {
   // The developable style's preferred normals are made before every Gauss step and by g_energy():
   // choosing the style sizes their buffers; the steps (one style alone, and blended with another on

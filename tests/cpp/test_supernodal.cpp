@@ -235,7 +235,7 @@ TEST(SupernodalFactor, ReproducesTheMatrixAndDenseCholesky) {
     const gauss::SupernodalStructure S = analyse(c.A_lower, random_order(n, 5u + n));
     gauss::Progress progress;
     progress.start(gauss::SetupPhase::factorizing);
-    const std::unique_ptr<double[]> values = gauss::factor_supernodal(S, progress);
+    const gauss::FactorValues values = gauss::factor_supernodal(S, progress);
     const Dense L = dense_factor(S, values.get());
     const Dense PAPt = permuted_dense(c.A_lower, S.new_of_old);
     const double scale = PAPt.cwiseAbs().maxCoeff();

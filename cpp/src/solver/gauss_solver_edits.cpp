@@ -57,14 +57,21 @@ void GaussSolver::set_reference_face_area(double area) {
   iteration_.invalidate();
 }
 
+void GaussSolver::set_keep_face_scratch(bool keep) {
+  if (keep && face_scratch_.empty()) face_scratch_.assign(topo_.faces.size(), Eigen::Matrix3d::Zero());
+  if (!keep && !cubic_ready_) face_scratch_ = {};
+}
+
 void GaussSolver::set_method(Method method) {
   if (method != Method::gauss && method != Method::cubic) throw std::invalid_argument("unknown stylization method");
   if (method == Method::cubic && !cubic_ready_) {
     const size_t carried = CubicLocalStep::kCarriedPerVertex * static_cast<size_t>(topo_.num_vertices);
-    check_memory(CubicLocalStep::bytes_needed(topo_.num_vertices, static_cast<int>(topo_.faces.size())) +
-                     FixedPointIteration::carried_bytes(carried),
+    const int nF = static_cast<int>(topo_.faces.size());
+    check_memory(CubicLocalStep::bytes_needed(topo_.num_vertices, nF) + FixedPointIteration::carried_bytes(carried) +
+                     static_cast<int64_t>(sizeof(Eigen::Matrix3d)) * nF,
                  "the cubic method's data for " + std::to_string(topo_.num_vertices) + " vertices");
     cubic_ = CubicLocalStep(topo_, rest_, edge_weight_);
+    face_scratch_.assign(nF, Eigen::Matrix3d::Zero());
     iteration_.prepare_carried(carried);
     cubic_ready_ = true;
     update_cubic_styles();

@@ -1,6 +1,8 @@
 #include "gauss/sparse/cholesky_solver.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
 #include <new>
 #include <string>
 
@@ -16,7 +18,8 @@ namespace {
 
 // s -= sum_k u[k] * y[3k..3k+2] for the three columns, u contiguous. Two accumulator sets halve the
 // floating-point dependency chain; the pairing is fixed, so the result depends only on the data.
-inline void subtract_dot(const double* u, const double* y, int len, double& s0, double& s1, double& s2) {
+template <class T>
+inline void subtract_dot(const T* u, const double* y, int len, double& s0, double& s1, double& s2) {
   double a0 = 0, a1 = 0, a2 = 0, b0 = 0, b1 = 0, b2 = 0;
   int k = 0;
   for (; k + 1 < len; k += 2) {
@@ -60,13 +63,30 @@ void adjacency(const Eigen::SparseMatrix<double>& A, std::vector<int>& start, st
       }
 }
 
+// The count doubles of `values` rounded to floats in the same block, whose second half is then
+// given back. Ascending and one at a time: float i ends at byte 4i + 4 <= 8i for i >= 1, so it never
+// lands on a double not yet read (memcpy: the bytes change type under the pointers).
+std::unique_ptr<float[], FreeDeleter> round_to_floats(FactorValues values, int64_t count) {
+  unsigned char* bytes = reinterpret_cast<unsigned char*>(values.get());
+  for (int64_t i = 0; i < count; ++i) {
+    double d;
+    std::memcpy(&d, bytes + sizeof(double) * i, sizeof d);
+    const float f = static_cast<float>(d);
+    std::memcpy(bytes + sizeof(float) * i, &f, sizeof f);
+  }
+  void* block = values.release();
+  // A failed shrink leaves the block as it was: the floats are in its first half either way.
+  if (void* shrunk = std::realloc(block, sizeof(float) * std::max<int64_t>(count, 1))) block = shrunk;
+  return std::unique_ptr<float[], FreeDeleter>(static_cast<float*>(block));
+}
+
 // Values of L a supernode of w columns and m rows holds: its rows below the diagonal block, and
 // the block's lower triangle.
 int64_t supernode_nonzeros(int w, int m) { return int64_t{w} * m - int64_t{w} * (w - 1) / 2; }
 
 }  // namespace
 
-void CholeskySolver::factor(Eigen::SparseMatrix<double> A, Progress* watcher) {
+void CholeskySolver::factor(Eigen::SparseMatrix<double> A, Progress* watcher, Precision precision) {
   Progress unwatched;
   Progress& progress = watcher ? *watcher : unwatched;
   const bool own_run = !progress.running();
@@ -88,7 +108,11 @@ void CholeskySolver::factor(Eigen::SparseMatrix<double> A, Progress* watcher) {
     release_free_memory();
     check_memory(S.numeric_bytes(), "the factorization of " + std::to_string(n) + " unknowns");
     progress.enter(SetupPhase::factorizing);
-    std::unique_ptr<double[]> values = factor_supernodal(S, progress);
+    FactorValues values = factor_supernodal(S, progress);
+    const int64_t num_values = S.num_values();
+
+    const bool single = precision == Precision::single_values ||
+                        (precision == Precision::automatic && n >= kSinglePrecisionUnknowns);
 
     // Everything succeeded: only now replace the previous factor.
     std::vector<double> inv_diag(n);
@@ -116,8 +140,19 @@ void CholeskySolver::factor(Eigen::SparseMatrix<double> A, Progress* watcher) {
     row_start_ = std::move(S.row_start);
     rows_ = std::move(S.rows);
     value_start_ = std::move(S.value_start);
-    values_ = std::move(values);
     inv_diag_ = std::move(inv_diag);
+    if (single) {
+      values_.reset();
+      values_single_ = round_to_floats(std::move(values), num_values);
+      a_start_ = std::move(S.A.start);
+      a_rows_ = std::move(S.A.rows);
+      a_values_ = std::move(S.A.values);
+      refine_.assign(3 * static_cast<size_t>(n), 0.0);
+    } else {
+      values_ = std::move(values);
+      values_single_.reset();
+      a_start_ = {}, a_rows_ = {}, a_values_ = {}, refine_ = {};
+    }
     part_start_ = std::move(S.part_start);
     top_col_ = S.top_col;
     top_sums_ = std::move(top_sums);
@@ -131,11 +166,12 @@ void CholeskySolver::factor(Eigen::SparseMatrix<double> A, Progress* watcher) {
   if (own_run) progress.finish();
 }
 
-void CholeskySolver::forward(int first_super, int last_super, double* y, double* top_sums) const {
+template <class T>
+void CholeskySolver::forward(const T* values, int first_super, int last_super, double* y, double* top_sums) const {
   for (int s = first_super; s < last_super; ++s) {
     const int f = col_start_[s], w = col_start_[s + 1] - f, m = row_start_[s + 1] - row_start_[s];
     const int* R = rows_.data() + row_start_[s];
-    const double* U = values_.get() + value_start_[s];
+    const T* U = values + value_start_[s];
     double* yJ = y + 3 * static_cast<size_t>(f);
     // Diagonal block: L_JJ z_J = y_J; column k of U holds row k of L_JJ left of the diagonal.
     for (int k = 0; k < w; ++k) {
@@ -166,11 +202,12 @@ void CholeskySolver::forward(int first_super, int last_super, double* y, double*
   }
 }
 
-void CholeskySolver::backward(int first_super, int last_super, double* y) const {
+template <class T>
+void CholeskySolver::backward(const T* values, int first_super, int last_super, double* y) const {
   for (int s = last_super - 1; s >= first_super; --s) {
     const int f = col_start_[s], w = col_start_[s + 1] - f, m = row_start_[s + 1] - row_start_[s];
     const int* R = rows_.data() + row_start_[s];
-    const double* U = values_.get() + value_start_[s];
+    const T* U = values + value_start_[s];
     double* yJ = y + 3 * static_cast<size_t>(f);
     // y_J -= L(R, J)^T x_R: the rows below are final (they lie above in the tree). Last row first,
     // so that the whole backward sweep reads the factor in one descending stream (the hardware
@@ -182,10 +219,10 @@ void CholeskySolver::backward(int first_super, int last_super, double* y) const 
       double x[4][3];
       for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 3; ++i) x[j][i] = y[3 * static_cast<size_t>(R[c - 4 + j]) + i];
-      const double* u0 = U + int64_t{w} * (c - 4);
-      const double* u1 = u0 + w;
-      const double* u2 = u1 + w;
-      const double* u3 = u2 + w;
+      const T* u0 = U + int64_t{w} * (c - 4);
+      const T* u1 = u0 + w;
+      const T* u2 = u1 + w;
+      const T* u3 = u2 + w;
       for (int k = 0; k < w; ++k) {
         const double a = u0[k], b = u1[k], d = u2[k], e = u3[k];
         for (int i = 0; i < 3; ++i) yJ[3 * k + i] -= (a * x[0][i] + b * x[1][i]) + (d * x[2][i] + e * x[3][i]);
@@ -194,7 +231,7 @@ void CholeskySolver::backward(int first_super, int last_super, double* y) const 
     for (--c; c >= w; --c) {
       const double* xr = y + 3 * static_cast<size_t>(R[c]);
       const double x0 = xr[0], x1 = xr[1], x2 = xr[2];
-      const double* u = U + int64_t{w} * c;
+      const T* u = U + int64_t{w} * c;
       for (int k = 0; k < w; ++k) {
         yJ[3 * k] -= u[k] * x0;
         yJ[3 * k + 1] -= u[k] * x1;
@@ -208,7 +245,7 @@ void CholeskySolver::backward(int first_super, int last_super, double* y) const 
       yJ[3 * k] = x0;
       yJ[3 * k + 1] = x1;
       yJ[3 * k + 2] = x2;
-      const double* u = U + int64_t{w} * k;
+      const T* u = U + int64_t{w} * k;
       for (int i = 0; i < k; ++i) {
         yJ[3 * i] -= u[i] * x0;
         yJ[3 * i + 1] -= u[i] * x1;
@@ -218,14 +255,14 @@ void CholeskySolver::backward(int first_super, int last_super, double* y) const 
   }
 }
 
-void CholeskySolver::solve_ordered_in_place(double* y) const {
-  if (n_ == 0) return;
+template <class T>
+void CholeskySolver::sweeps(const T* values, double* y) const {
   const size_t top_rows = static_cast<size_t>(n_ - top_col_);
   const int top = part_start_[kFactorParts], supernodes = static_cast<int>(col_start_.size()) - 1;
   // Forward (L z = b): the parts, each with its own sums for the rows above the cut, then those
   // sums in part order, then the rows above the cut.
   parallel::for_tasks(kFactorParts, n_ > 4096, [&](int t) {
-    forward(part_start_[t], part_start_[t + 1], y, top_sums_.data() + 3 * top_rows * t);
+    forward(values, part_start_[t], part_start_[t + 1], y, top_sums_.data() + 3 * top_rows * t);
   });
   for (int t = 0; t < kFactorParts; ++t) {
     double* sums = top_sums_.data() + 3 * top_rows * t;
@@ -235,10 +272,53 @@ void CholeskySolver::solve_ordered_in_place(double* y) const {
       sums[i] = 0.0;
     }
   }
-  forward(top, supernodes, y, nullptr);
+  forward(values, top, supernodes, y, nullptr);
   // Backward (L^T x = z): the rows above the cut first, then the parts.
-  backward(top, supernodes, y);
-  parallel::for_tasks(kFactorParts, n_ > 4096, [&](int t) { backward(part_start_[t], part_start_[t + 1], y); });
+  backward(values, top, supernodes, y);
+  parallel::for_tasks(kFactorParts, n_ > 4096, [&](int t) { backward(values, part_start_[t], part_start_[t + 1], y); });
+}
+
+void CholeskySolver::subtract_product(const double* x, double* r) const {
+  // Column j holds A(i, j) for i >= j: row j's entries right of the diagonal (gathered, in parallel)
+  // and column j's below it (scattered to rows i > j, in one pass in column order: deterministic).
+  parallel::for_each(n_, parallel::kMinParallelItems, [&](int j) {
+    double s0 = 0, s1 = 0, s2 = 0;
+    for (int k = a_start_[j]; k < a_start_[j + 1]; ++k) {
+      const double a = a_values_[k];
+      const double* xi = x + 3 * static_cast<size_t>(a_rows_[k]);
+      s0 += a * xi[0], s1 += a * xi[1], s2 += a * xi[2];
+    }
+    double* rj = r + 3 * static_cast<size_t>(j);
+    rj[0] -= s0, rj[1] -= s1, rj[2] -= s2;
+  });
+  for (int j = 0; j < n_; ++j) {
+    const double* xj = x + 3 * static_cast<size_t>(j);
+    for (int k = a_start_[j]; k < a_start_[j + 1]; ++k) {
+      const int i = a_rows_[k];
+      if (i == j) continue;
+      const double a = a_values_[k];
+      double* ri = r + 3 * static_cast<size_t>(i);
+      ri[0] -= a * xj[0], ri[1] -= a * xj[1], ri[2] -= a * xj[2];
+    }
+  }
+}
+
+void CholeskySolver::solve_ordered_in_place(double* y) const {
+  if (n_ == 0) return;
+  if (values_) {
+    sweeps(values_.get(), y);
+    return;
+  }
+  // Single precision: x = M^-1 b, then x += M^-1 (b - A x).
+  double* r = refine_.data();
+  const size_t size = 3 * static_cast<size_t>(n_);
+  std::copy(y, y + size, r);
+  sweeps(values_single_.get(), y);
+  subtract_product(y, r);
+  sweeps(values_single_.get(), r);
+  parallel::for_each(n_, parallel::kMinParallelItems, [&](int i) {
+    for (size_t k = 3 * static_cast<size_t>(i); k < 3 * static_cast<size_t>(i) + 3; ++k) y[k] += r[k];
+  });
 }
 
 }  // namespace gauss
@@ -257,8 +337,12 @@ void CholeskySolver::plan_sparse(const int* rows, int count, std::vector<int>& p
 }
 
 void CholeskySolver::solve_planned_in_place(double* y, const std::vector<int>& plan) const {
-  for (int t : plan) forward(t, t + 1, y, nullptr);
-  for (auto t = plan.rbegin(); t != plan.rend(); ++t) backward(*t, *t + 1, y);
+  const auto planned = [&](const auto* values) {
+    for (int t : plan) forward(values, t, t + 1, y, nullptr);
+    for (auto t = plan.rbegin(); t != plan.rend(); ++t) backward(values, *t, *t + 1, y);
+  };
+  if (values_) planned(values_.get());
+  else planned(values_single_.get());
 }
 
 long long CholeskySolver::plan_nonzeros(const std::vector<int>& plan) const {

@@ -29,8 +29,8 @@ struct Workspace {
   std::vector<double> update;  // one slice of the largest update (max_update_columns * kUpdateSlice)
 };
 
-std::unique_ptr<double[]> allocate(int64_t count, const char* what) {
-  std::unique_ptr<double[]> p(new (std::nothrow) double[std::max<int64_t>(count, 1)]);
+FactorValues allocate(int64_t count, const char* what) {
+  FactorValues p(static_cast<double*>(std::malloc(sizeof(double) * std::max<int64_t>(count, 1))));
   if (!p) throw OutOfMemory(std::string("not enough memory for ") + what + " (" + format_bytes(8 * count) + ")");
   return p;
 }
@@ -136,14 +136,14 @@ class Factorization {
 
 }  // namespace
 
-std::unique_ptr<double[]> factor_supernodal(const SupernodalStructure& S, Progress& progress) {
-  std::unique_ptr<double[]> values = allocate(S.num_values(), "the factor");
+FactorValues factor_supernodal(const SupernodalStructure& S, Progress& progress) {
+  FactorValues values = allocate(S.num_values(), "the factor");
   const Factorization F(S, values.get());
   const int first_top = S.part_start[kFactorParts], num_super = S.num_supernodes();
   const int64_t top_begin = S.value_start[first_top], top_count = S.top_values();
   // Part 0 sends its updates straight into the top's blocks, every other part into a zeroed copy
   // of them that the top adds in part order: the sums never depend on which thread finished first.
-  std::vector<std::unique_ptr<double[]>> sent(kFactorParts);
+  std::vector<FactorValues> sent(kFactorParts);
   for (int t = 1; t < kFactorParts; ++t) {
     sent[t] = allocate(top_count, "the factorization's top blocks");
     std::fill(sent[t].get(), sent[t].get() + top_count, 0.0);

@@ -20,7 +20,8 @@ class MeshArrays:
     coords:         (#V, 3) float32, base shape (reference shape key if the mesh has keys)
     triangles:      (#T, 3) int32, loop triangles = what the solver sees
     tri_polygon:    (#T,) int32, polygon each triangle comes from
-    corner_vertex / corner_polygon: (#corners,) int32, vertex and polygon of each face corner
+    corner_vertex / corner_polygon: (#corners,) int32, vertex and polygon of each face corner (on a
+                    mesh of triangles, a view of triangles and made when asked for)
     polygon_sides:  (#P,) int32, corners per polygon
     """
 
@@ -29,8 +30,18 @@ class MeshArrays:
         self.num_polygons = len(mesh.polygons)
         self.coords = np.empty((self.num_vertices, 3), np.float32)
         read_base_coords(mesh, self.coords)
-        (self.triangles, self.tri_polygon, self.corner_vertex, self.corner_polygon,
+        (self.triangles, self.tri_polygon, self.corner_vertex, corner_polygon,
          self.polygon_sides) = read_faces(mesh)
+        # On a mesh of triangles corner_polygon is made when asked for: kept, it is 48 MB at 4M
+        # triangles for the whole run (docs/performance.md#sculpt-scale).
+        self._corner_polygon = None if self.num_polygons == len(self.tri_polygon) == len(corner_polygon) // 3 \
+            else corner_polygon
+
+    @property
+    def corner_polygon(self):
+        if self._corner_polygon is None:
+            return np.repeat(self.tri_polygon, 3)
+        return self._corner_polygon
 
     def polygon_average(self, vertex_values):
         """Mean of a per-vertex float array over each polygon's corners."""
@@ -124,7 +135,7 @@ def read_faces(mesh):
     mesh.loop_triangles.foreach_get("vertices", triangles.reshape(-1))
     if count == num_polygons and num_loops == 3 * count:  # a polygon has at least one triangle: all are triangles
         tri_polygon = np.arange(count, dtype=np.int32)
-        return (triangles, tri_polygon, triangles.reshape(-1).copy(), np.repeat(tri_polygon, 3),
+        return (triangles, tri_polygon, triangles.reshape(-1), np.repeat(tri_polygon, 3),
                 np.full(count, 3, np.int32))
     tri_polygon = np.empty(count, np.int32)
     tri_loops = np.empty(3 * count, np.int32)

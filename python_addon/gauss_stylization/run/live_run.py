@@ -143,6 +143,8 @@ class LiveRun:
             if session.busy is None:
                 session.sync_settings()  # a problem: the finish goes on with the settings that ran
         tasks = [session.finish_task() for session in self._finishing]
+        for session in self._finishing:
+            session.leave_proxy()
         self.finish_setup_job = BackgroundSetup(self._finishing[0].gauss_core, tasks)
         return True
 

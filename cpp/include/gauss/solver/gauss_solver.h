@@ -215,6 +215,11 @@ class GaussSolver {
   long long cubic_admm_iterations() const { return cubic_ready_ ? cubic_.last_admm_iterations() : 0; }
   double cubic_energy() const { return cubic_ready_ ? cubic_.cubic_energy(cubic_lambda_, rotation_) : 0.0; }
   long long factor_nonzeros() const { return laplacian_.factor_nonzeros(); }
+  // Whether a step keeps its per-face scratch (face_scratch_ below): by default only below
+  // kSinglePrecisionUnknowns vertices, and always once the cubic method was set. The results are the
+  // same bits either way; tests compare them.
+  void set_keep_face_scratch(bool keep);
+  bool keeps_face_scratch() const { return !face_scratch_.empty(); }
 
  private:
   void compute_rest_quantities();
@@ -235,7 +240,9 @@ class GaussSolver {
   // One local-global step on X_ (Algorithm 1: local step, then the global solve), timing its phases.
   void local_global_step();
   void face_pass();
-  void fit_rotations();  // rotation_ from the covariances in face_scratch_
+  // Face f's ARAP covariance sum_k w_k e_k ehat_k^T at X_.
+  Eigen::Matrix3d face_covariance(int f) const;
+  void fit_rotations();  // rotation_ from the faces' covariances
   // With resolution_independent: per vertex, the bending term's sum_j beta_ij w_ij R_j (R of the last
   // step), and with square_flat_regions the squaring pull square_prior_, which the rotation fits add to
   // their covariance; nullptr when both are off.
@@ -245,6 +252,10 @@ class GaussSolver {
   // the lambda w e* pull), plain ARAP's over the faces, or the cubic method's (per vertex).
   enum class Rhs { gauss, arap, cubic };
   void assemble_rhs(Rhs terms);
+  // Face f's mean rotation, and its slot k's target in the Gauss or plain ARAP right-hand side
+  // with that rotation Rf.
+  Eigen::Matrix3d face_rotation(int f) const;
+  Eigen::Vector3d slot_target(int f, int k, const Eigen::Matrix3d& Rf, Rhs terms) const;
   // The Gauss step's guard against running away (docs/robustness.md, "Negative cotangent weights"): the
   // reach box (centre reach_centre_, half its longest side reach_; normalized frame) holds the used rest
   // vertices, the pin targets and the caller's last set_vertices(); a step whose result lies farther
@@ -356,9 +367,12 @@ class GaussSolver {
   std::vector<Eigen::Matrix3d> rotation_;                    // #V
   std::vector<Eigen::Quaterniond> rotation_q_;               // #V: warm start of the rotation fit
   // #F, for two phases of a step that never overlap: first each face's ARAP covariance
-  // sum_k w e_k ehat_k^T (face_pass() or the cubic method's, read by the rotation fit), then the
-  // right-hand sides of its corners, corner k in column k (assemble_rhs()). One array for both saves
-  // a 3x3 block a face (docs/performance.md#set-up-at-scale).
+  // (face_covariance() or the cubic method's, read by the rotation fit), then the right-hand sides
+  // of its corners, corner k in column k (assemble_rhs()). One array for both saves a 3x3 block a
+  // face (docs/performance.md#set-up-at-scale). From kSinglePrecisionUnknowns vertices up the Gauss
+  // method keeps none (empty): the rotation fit and the right-hand side compute what they read of
+  // it, three times a face instead of once (the same bits; at 2M vertices 0.3 GB less and a step
+  // 15% slower). The cubic method makes it when it is first set.
   std::vector<Eigen::Matrix3d> face_scratch_;
   StepTimings timings_;
   ThreadTuner tuner_;

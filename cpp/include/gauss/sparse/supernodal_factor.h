@@ -14,6 +14,7 @@
 // is cancelled (SetupPhase::factorizing), OutOfMemory if the blocks cannot be allocated.
 // Bit-identical for any number of threads: every supernode is computed by the same operations, on
 // one thread, in an order fixed by the structure.
+#include <cstdlib>
 #include <memory>
 
 #include "gauss/util/progress.h"
@@ -21,6 +22,13 @@
 
 namespace gauss {
 
-std::unique_ptr<double[]> factor_supernodal(const SupernodalStructure& S, Progress& progress);
+// The factor's values come from std::malloc, so that they can be shrunk in place (std::realloc):
+// CholeskySolver rounds them to floats within the same block.
+struct FreeDeleter {
+  void operator()(void* p) const { std::free(p); }
+};
+using FactorValues = std::unique_ptr<double[], FreeDeleter>;
+
+FactorValues factor_supernodal(const SupernodalStructure& S, Progress& progress);
 
 }  // namespace gauss
