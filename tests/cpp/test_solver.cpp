@@ -286,18 +286,18 @@ TEST(GaussSolver, OneAndTwoThreadsAreBitIdentical) {
   for (size_t i = 0; i < one.size(); ++i) ASSERT_EQ(one[i], again[i]) << i;
 }
 
-TEST(GaussSolver, StepsWithoutTheFaceScratchGiveTheSameBits) {
-  // From a million vertices up a step keeps no per-face scratch and computes what it would have read
-  // of it (gauss_solver.h, face_scratch_): the same operations, so the same bits, with and without
-  // resolution independence (its bending term), pins, the runaway's plain ARAP step path aside.
+TEST(GaussSolver, LeanStepsGiveTheSameBits) {
+  // From a million vertices up the steps are lean: they keep no per-face scratch, slot rest vectors
+  // or slot edge weights, and compute what they would have read of them (gauss_solver.h): the same
+  // operations, so the same bits, with and without resolution independence (its bending term).
   TriangleMesh sphere = gauss_test::icosphere(5);
   for (bool resolution_independent : {false, true}) {
     std::vector<double> out[2];
     for (bool keep : {true, false}) {
       GaussSolver s(sphere.V.data(), sphere.num_vertices(), sphere.F.data(), sphere.num_faces(), {0, 100});
-      EXPECT_TRUE(s.keeps_face_scratch());  // the default at this size
-      s.set_keep_face_scratch(keep);
-      EXPECT_EQ(s.keeps_face_scratch(), keep);
+      EXPECT_FALSE(s.lean_steps());  // the default at this size
+      s.set_lean_steps(!keep);
+      EXPECT_EQ(s.lean_steps(), !keep);
       s.set_styles({style("cube")});
       s.set_resolution_independent(resolution_independent);
       for (int i = 0; i < 8; ++i) s.step();

@@ -100,13 +100,13 @@ TEST(StepAllocations, StepsDoNotAllocate) {
 }
 
 TEST(StepAllocations, SculptScaleStepsDoNotAllocate) {
-  // What a mesh of a million vertices or more gets (shown here on a small one): steps without the
-  // per-face scratch, and a global solve on a factor in floats refined against A, whose scratch is
+  // What a mesh of a million vertices or more gets (shown here on a small one): lean steps, and a
+  // global solve on a factor in floats refined against A, whose scratch is
   // made with the factor.
   const gauss::TriangleMesh m = gauss_test::icosphere(5);
   gauss::GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), {0, 17});
   s.set_styles({gauss::PreferenceFunction(gauss::preset_style("cube"))});
-  s.set_keep_face_scratch(false);
+  s.set_lean_steps(true);
   s.set_resolution_independent(true);
   for (int i = 0; i < 3; ++i) s.step();
   const long before = g_allocations.load();

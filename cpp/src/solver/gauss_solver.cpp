@@ -25,8 +25,8 @@ using Clock = std::chrono::steady_clock;
 
 // Memory the solver keeps per face (topology, rest quantities, ADMM buffers, edges) and per vertex,
 // rounded down from its members' sizes, for the early memory check. Per face, counting 1.5 edges a
-// face: topology 73 bytes, rest quantities 44, styles 12, step buffers 92 (221 in all; below
-// kSinglePrecisionUnknowns vertices 72 more, face_scratch_); per vertex:
+// face: topology 73 bytes, rest quantities 44, styles 12, step buffers 92 (221 in all; unless the
+// steps are lean 168 more: face_scratch_, slot_rest_, slot_edge_weight_); per vertex:
 // numbering and topology 12, positions 72, rotations 104, the iteration's 81, the constrained
 // system's 56 (325; the factor is checked on its own).
 constexpr int64_t kSetupBytesPerFace = 210, kSetupBytesPerVertex = 320;
@@ -136,7 +136,7 @@ GaussSolver::GaussSolver(const double* V, int num_vertices, const int64_t* F, in
   dual_.assign(nF, {0, 0, 0});
   face_mu_.assign(nF, 0.0);
   edge_star_.assign(topo_.edges.size(), Vector3d::Zero());
-  if (num_vertices < kSinglePrecisionUnknowns) face_scratch_.assign(nF, Matrix3d::Zero());
+  set_lean_steps(num_vertices >= kSinglePrecisionUnknowns);
   rotation_.assign(num_vertices, Matrix3d::Identity());
   rotation_q_.assign(num_vertices, Eigen::Quaterniond::Identity());
   iteration_ = FixedPointIteration(num_vertices);
@@ -211,11 +211,11 @@ void GaussSolver::face_pass() {
     if (face_mu_[f] > 0.0) {
       // The sign of e*_ij does not matter while u = 0 (both terms are even in e*).
       const double lam_f = lam * face_coupling(f);  // == lam when resolution_independent is off
-      const auto& fe = topo_.face_edge[f];
-      const double lw[3] = {lam_f * edge_weight_[fe[0]], lam_f * edge_weight_[fe[1]], lam_f * edge_weight_[fe[2]]};
+      const double lw[3] = {lam_f * slot_edge_weight(f, 0), lam_f * slot_edge_weight(f, 1),
+                            lam_f * slot_edge_weight(f, 2)};
       normal_star_[f] = normal_update(f, s, c / len, e, lw, zero);
     }
-    if (!face_scratch_.empty()) face_scratch_[f] = face_covariance(f);
+    if (!lean_steps()) face_scratch_[f] = face_covariance(f, e);
   });
 }
 
@@ -223,6 +223,10 @@ Matrix3d GaussSolver::face_covariance(int f) const {
   const auto& t = topo_.faces[f];
   Vector3d e[3];
   for (int k = 0; k < 3; ++k) e[k] = X_[t[(k + 1) % 3]] - X_[t[k]];
+  return face_covariance(f, e);
+}
+
+Matrix3d GaussSolver::face_covariance(int f, const Vector3d* e) const {
   Matrix3d cov = e[0] * slot_rest(f, 0).transpose();
   cov.noalias() += e[1] * slot_rest(f, 1).transpose();
   cov.noalias() += e[2] * slot_rest(f, 2).transpose();
@@ -260,7 +264,7 @@ void GaussSolver::fit_rotations() {
     const int begin = topo_.vertex_corner_start[v], end = topo_.vertex_corner_start[v + 1];
     if (begin == end) return;
     Matrix3d M = Matrix3d::Zero();
-    if (face_scratch_.empty())
+    if (lean_steps())
       for (int i = begin; i < end; ++i) M += face_covariance(topo_.vertex_corners[i] / 3);
     else
       for (int i = begin; i < end; ++i) M += face_scratch_[topo_.vertex_corners[i] / 3];
@@ -331,7 +335,8 @@ void GaussSolver::admm_round(bool first_round) {
       const Vector3d es[3] = {edge_star_[fe[0]], edge_star_[fe[1]], edge_star_[fe[2]]};
       for (int k = 0; k < 3; ++k) dual_[f][k] += es[k].dot(n);
       const double lam_f = lam * face_coupling(f);
-      const double lw[3] = {lam_f * edge_weight_[fe[0]], lam_f * edge_weight_[fe[1]], lam_f * edge_weight_[fe[2]]};
+      const double lw[3] = {lam_f * slot_edge_weight(f, 0), lam_f * slot_edge_weight(f, 1),
+                            lam_f * slot_edge_weight(f, 2)};
       normal_star_[f] = normal_update(f, face_style_[f], n, es, lw, dual_[f].data());
     });
   }
@@ -407,27 +412,55 @@ void GaussSolver::assemble_rhs(Rhs terms) {
     });
     return;
   }
-  // Corner k is the head of slot k-1 and the tail of slot k. Kept per face where face_scratch_ is
-  // (the three corners' shares in its columns), else computed per corner: the same bits either way.
-  const bool kept = !face_scratch_.empty();
-  if (kept)
-    parallel::for_each(static_cast<int>(topo_.faces.size()), parallel::kMinParallelItems, [&](int f) {
-      const Matrix3d Rf = face_rotation(f);
-      Vector3d d[3];
-      for (int k = 0; k < 3; ++k) d[k] = slot_target(f, k, Rf, terms);
-      for (int k = 0; k < 3; ++k) face_scratch_[f].col(k) = d[(k + 2) % 3] - d[k];
-    });
+  if (lean_steps()) {
+    assemble_rhs_lean(terms);
+    return;
+  }
+  const int nF = static_cast<int>(topo_.faces.size());
+  const double lam = lambda_, inv = 1.0 / (1.0 + lambda_);
+  parallel::for_each(nF, parallel::kMinParallelItems, [&](int f) {
+    const Matrix3d Rf = face_rotation(f);
+    Vector3d d[3];
+    for (int k = 0; k < 3; ++k) {
+      d[k] = Rf * slot_rest_[f][k];
+      if (terms == Rhs::arap) continue;
+      const double s = topo_.face_edge_sign[f][k];
+      d[k] = (d[k] + (lam * slot_weight_[f][k] * s) * edge_star_[topo_.face_edge[f][k]]) * inv;
+    }
+    // Corner k is the head of slot k-1 and the tail of slot k.
+    for (int k = 0; k < 3; ++k) face_scratch_[f].col(k) = d[(k + 2) % 3] - d[k];
+  });
   parallel::for_each(laplacian_.num_unknowns(), parallel::kMinParallelItems, [&](int u) {
     const int v = laplacian_.vertex_of_unknown(u);
     Vector3d b = laplacian_.constant_rhs(u);
     for (int i = topo_.vertex_corner_start[v]; i < topo_.vertex_corner_start[v + 1]; ++i) {
-      const int c = topo_.vertex_corners[i], f = c / 3, k = c % 3;
-      if (kept) {
-        b += face_scratch_[f].col(k);
-      } else {
-        const Matrix3d Rf = face_rotation(f);
-        b += slot_target(f, (k + 2) % 3, Rf, terms) - slot_target(f, k, Rf, terms);
+      const int c = topo_.vertex_corners[i];
+      b += face_scratch_[c / 3].col(c % 3);
+    }
+    laplacian_.set_rhs(u, b);
+  });
+}
+
+void GaussSolver::assemble_rhs_lean(Rhs terms) {
+  // assemble_rhs()'s sum, each corner's share computed where it is added: the same operations on
+  // the same values, so the same bits (the test LeanStepsGiveTheSameBits holds the two together).
+  const double lam = lambda_, inv = 1.0 / (1.0 + lambda_);
+  parallel::for_each(laplacian_.num_unknowns(), parallel::kMinParallelItems, [&](int u) {
+    const int v = laplacian_.vertex_of_unknown(u);
+    Vector3d b = laplacian_.constant_rhs(u);
+    for (int i = topo_.vertex_corner_start[v]; i < topo_.vertex_corner_start[v + 1]; ++i) {
+      const int c = topo_.vertex_corners[i], f = c / 3;
+      const Matrix3d Rf = face_rotation(f);
+      Vector3d d[2];
+      const int slots[2] = {(c % 3 + 2) % 3, c % 3};  // corner k: the head of slot k-1, the tail of slot k
+      for (int h = 0; h < 2; ++h) {
+        const int k = slots[h];
+        d[h] = Rf * slot_rest(f, k);
+        if (terms == Rhs::arap) continue;
+        const double s = topo_.face_edge_sign[f][k];
+        d[h] = (d[h] + (lam * slot_weight_[f][k] * s) * edge_star_[topo_.face_edge[f][k]]) * inv;
       }
+      b += d[0] - d[1];
     }
     laplacian_.set_rhs(u, b);
   });
@@ -438,15 +471,6 @@ Matrix3d GaussSolver::face_rotation(int f) const {
   // of an edge is the mean rotation of the face applied to its rest vector (Eq. 27).
   const auto& t = topo_.faces[f];
   return (rotation_[t[0]] + rotation_[t[1]] + rotation_[t[2]]) * (1.0 / 3.0);
-}
-
-Vector3d GaussSolver::slot_target(int f, int k, const Matrix3d& Rf, Rhs terms) const {
-  Vector3d d = Rf * slot_rest(f, k);
-  if (terms == Rhs::arap) return d;
-  const double s = topo_.face_edge_sign[f][k];
-  const double inv = 1.0 / (1.0 + lambda_);
-  d = (d + (lambda_ * slot_weight_[f][k] * s) * edge_star_[topo_.face_edge[f][k]]) * inv;
-  return d;
 }
 
 void GaussSolver::local_global_step() {

@@ -57,9 +57,23 @@ void GaussSolver::set_reference_face_area(double area) {
   iteration_.invalidate();
 }
 
-void GaussSolver::set_keep_face_scratch(bool keep) {
-  if (keep && face_scratch_.empty()) face_scratch_.assign(topo_.faces.size(), Eigen::Matrix3d::Zero());
-  if (!keep && !cubic_ready_) face_scratch_ = {};
+void GaussSolver::set_lean_steps(bool lean) {
+  const int nF = static_cast<int>(topo_.faces.size());
+  if (lean) {
+    slot_rest_ = {};
+    slot_edge_weight_ = {};
+    if (!cubic_ready_) face_scratch_ = {};
+    return;
+  }
+  if (!lean_steps()) return;
+  // Filled from the lean accessors: the same values they compute.
+  std::vector<std::array<Eigen::Vector3d, 3>> rest(nF);
+  std::vector<std::array<double, 3>> edge(nF);
+  for (int f = 0; f < nF; ++f)
+    for (int k = 0; k < 3; ++k) rest[f][k] = slot_rest(f, k), edge[f][k] = slot_edge_weight(f, k);
+  slot_rest_ = std::move(rest);
+  slot_edge_weight_ = std::move(edge);
+  if (face_scratch_.empty()) face_scratch_.assign(nF, Eigen::Matrix3d::Zero());
 }
 
 void GaussSolver::set_method(Method method) {

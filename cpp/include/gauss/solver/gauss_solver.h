@@ -215,19 +215,25 @@ class GaussSolver {
   long long cubic_admm_iterations() const { return cubic_ready_ ? cubic_.last_admm_iterations() : 0; }
   double cubic_energy() const { return cubic_ready_ ? cubic_.cubic_energy(cubic_lambda_, rotation_) : 0.0; }
   long long factor_nonzeros() const { return laplacian_.factor_nonzeros(); }
-  // Whether a step keeps its per-face scratch (face_scratch_ below): by default only below
-  // kSinglePrecisionUnknowns vertices, and always once the cubic method was set. The results are the
-  // same bits either way; tests compare them.
-  void set_keep_face_scratch(bool keep);
-  bool keeps_face_scratch() const { return !face_scratch_.empty(); }
+  // Lean steps keep no per-face scratch, slot rest vectors or slot edge weights (the members' notes
+  // below) and compute what they would read of them: 168 bytes a face less (0.7 GB at 2M vertices)
+  // for a slower step (15% at 2M). The default from kSinglePrecisionUnknowns vertices up, where the
+  // memory is what limits. The results are the same bits either way; tests compare them.
+  void set_lean_steps(bool lean);
+  bool lean_steps() const { return slot_rest_.empty(); }
 
  private:
   void compute_rest_quantities();
   void update_face_coupling();  // bending_beta_ from face_area_ and resolution_independent_
   // Slot k of face f (the edge from its corner k to corner k+1): its weight times its rest vector.
   Eigen::Vector3d slot_rest(int f, int k) const {
+    if (!slot_rest_.empty()) return slot_rest_[f][k];
     const auto& t = topo_.faces[f];
     return slot_weight_[f][k] * (rest_[t[(k + 1) % 3]] - rest_[t[k]]);
+  }
+  // Slot k's edge weight (edge_weight_ of its edge).
+  double slot_edge_weight(int f, int k) const {
+    return slot_edge_weight_.empty() ? edge_weight_[topo_.face_edge[f][k]] : slot_edge_weight_[f][k];
   }
   // The factor of lambda in face f's normal step: 1, or with resolution_independent the reference
   // area over the face's (docs/resolution.md).
@@ -240,8 +246,9 @@ class GaussSolver {
   // One local-global step on X_ (Algorithm 1: local step, then the global solve), timing its phases.
   void local_global_step();
   void face_pass();
-  // Face f's ARAP covariance sum_k w_k e_k ehat_k^T at X_.
+  // Face f's ARAP covariance sum_k w_k e_k ehat_k^T at X_ (e: its edge vectors there, if at hand).
   Eigen::Matrix3d face_covariance(int f) const;
+  Eigen::Matrix3d face_covariance(int f, const Eigen::Vector3d* e) const;
   void fit_rotations();  // rotation_ from the faces' covariances
   // With resolution_independent: per vertex, the bending term's sum_j beta_ij w_ij R_j (R of the last
   // step), and with square_flat_regions the squaring pull square_prior_, which the rotation fits add to
@@ -252,10 +259,9 @@ class GaussSolver {
   // the lambda w e* pull), plain ARAP's over the faces, or the cubic method's (per vertex).
   enum class Rhs { gauss, arap, cubic };
   void assemble_rhs(Rhs terms);
-  // Face f's mean rotation, and its slot k's target in the Gauss or plain ARAP right-hand side
-  // with that rotation Rf.
+  void assemble_rhs_lean(Rhs terms);  // the same, for lean steps (no face_scratch_ to gather from)
+  // Face f's mean rotation (Eq. 27 rotates its slots' rest vectors by it).
   Eigen::Matrix3d face_rotation(int f) const;
-  Eigen::Vector3d slot_target(int f, int k, const Eigen::Matrix3d& Rf, Rhs terms) const;
   // The Gauss step's guard against running away (docs/robustness.md, "Negative cotangent weights"): the
   // reach box (centre reach_centre_, half its longest side reach_; normalized frame) holds the used rest
   // vertices, the pin targets and the caller's last set_vertices(); a step whose result lies farther
@@ -297,10 +303,13 @@ class GaussSolver {
   std::vector<Eigen::Vector3d> rest_, X_;  // normalized frame
 
   // Rest quantities.
-  // Whatever follows from these in a few operations is computed where it is used (slot_rest(),
-  // face_coupling(), the bending term's slot weights), not stored: at sculpt scale every 8 bytes a face is 32 MB.
+  // What follows from these in a few operations is computed where it is used (face_coupling(), the
+  // bending term's slot weights), or kept only while the steps are not lean (slot_rest(),
+  // slot_edge_weight()): at sculpt scale every 8 bytes a face is 32 MB.
   std::vector<std::array<double, 3>> slot_weight_;    // #F by 3: cot(opposite angle) / 2
+  std::vector<std::array<Eigen::Vector3d, 3>> slot_rest_;  // #F by 3: weight * rest edge vector (not lean)
   std::vector<double> edge_weight_;                  // #E: sum of the slot weights of the edge
+  std::vector<std::array<double, 3>> slot_edge_weight_;  // #F by 3: edge_weight_ of each slot (not lean)
   std::vector<double> face_area_;                   // #F: rest area
   std::vector<double> bending_beta_;                 // #V while resolution_independent: beta (else empty)
   std::vector<Eigen::Matrix3d> rotation_prior_;       // #V while either pull is on: the rotation fit's prior
@@ -369,10 +378,9 @@ class GaussSolver {
   // #F, for two phases of a step that never overlap: first each face's ARAP covariance
   // (face_covariance() or the cubic method's, read by the rotation fit), then the right-hand sides
   // of its corners, corner k in column k (assemble_rhs()). One array for both saves a 3x3 block a
-  // face (docs/performance.md#set-up-at-scale). From kSinglePrecisionUnknowns vertices up the Gauss
-  // method keeps none (empty): the rotation fit and the right-hand side compute what they read of
-  // it, three times a face instead of once (the same bits; at 2M vertices 0.3 GB less and a step
-  // 15% slower). The cubic method makes it when it is first set.
+  // face (docs/performance.md#set-up-at-scale). Lean steps keep none: the rotation fit and the
+  // right-hand side compute what they read of it, three times a face instead of once. The cubic
+  // method makes it when it is first set.
   std::vector<Eigen::Matrix3d> face_scratch_;
   StepTimings timings_;
   ThreadTuner tuner_;
