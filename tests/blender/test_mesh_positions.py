@@ -100,6 +100,11 @@ def test_faces_read_together_are_the_triangles_and_corners_read_apart(addon):
     arrays = mesh_io.MeshArrays(meshes["triangles"])
     assert np.shares_memory(arrays.corner_vertex, arrays.triangles)
     assert np.array_equal(arrays.corner_polygon, np.repeat(np.arange(len(arrays.triangles)), 3))
+    # ... and a painted weight's mean over each polygon (a Region's faces) is the same, bit for bit, as
+    # the corners' sum gives on any mesh.
+    weights = np.random.default_rng(3).random(arrays.num_vertices, dtype=np.float32)
+    corners_sum = np.bincount(arrays.corner_polygon, weights=weights[arrays.corner_vertex], minlength=arrays.num_polygons)
+    assert np.array_equal(arrays.polygon_average(weights), corners_sum / np.maximum(arrays.polygon_sides, 1))
     other = mesh_io.MeshArrays(meshes["suzanne"])
     assert not np.shares_memory(other.corner_vertex, other.triangles)
     assert np.array_equal(other.corner_polygon, _faces_read_apart(mesh_io, meshes["suzanne"])[3])

@@ -90,6 +90,9 @@ def proxy_run(name):
     yield 0.5
     op = d.live_operator()
     d.check("Enter starts the full-resolution finish", op is None or op.live.finishing)
+    if op is not None:  # the whole window: the header's progress and the status bar while it finishes
+        with bpy.context.temp_override(window=d.window(), area=d.view3d()[0]):
+            bpy.ops.screen.screenshot(filepath=os.path.join(d.SHOTS, "proxy_finishing.png"))
     yield from _wait(lambda: d.live_operator() is None, limit=2 * STAGE_LIMIT)
     kept = d.coords(bpy.data.objects[name])
     last = bpy.context.window_manager.operators[-1] if len(bpy.context.window_manager.operators) else None

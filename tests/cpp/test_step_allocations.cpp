@@ -39,6 +39,15 @@ void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 // their own (a unity build compiles several files in one translation unit).
 namespace test_step_allocations {
 
+// Heap allocations in five steps of `s`, after three that warm up (the thread pool starts its workers,
+// buffers sized by a setting just changed are made).
+long allocations_in_steps(gauss::GaussSolver& s) {
+  for (int i = 0; i < 3; ++i) s.step();
+  const long before = g_allocations.load();
+  for (int i = 0; i < 5; ++i) s.step();
+  return g_allocations.load() - before;
+}
+
 TEST(StepAllocations, StepsDoNotAllocate) {
   // Large enough for the parallel paths (more than 4096 faces), with pins (on one of two components:
   // Keep Volume scales the other), two styles (one with rings), an unstyled face and several ADMM
@@ -52,10 +61,7 @@ TEST(StepAllocations, StepsDoNotAllocate) {
   fs[5] = -1;
   s.set_face_styles(fs.data(), m.num_faces());
   s.set_admm_iterations(2);
-  for (int i = 0; i < 3; ++i) s.step();  // warm-up: the thread pool starts its workers
-  const long before = g_allocations.load();
-  for (int i = 0; i < 5; ++i) s.step();
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_EQ(allocations_in_steps(s), 0);
   // What wraps a step: Keep Volume, stepping until converged.
   s.set_keep_volume(true);
   const long before_options = g_allocations.load();
@@ -72,60 +78,30 @@ TEST(StepAllocations, StepsDoNotAllocate) {
   gauss::StyleParams turned = gauss::preset_style("cube");
   turned.rotation = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).toRotationMatrix();
   s.set_style(1, gauss::PreferenceFunction(turned));
-  for (int i = 0; i < 3; ++i) s.step();
-  const long before_cubic = g_allocations.load();
-  for (int i = 0; i < 5; ++i) s.step();
-  EXPECT_EQ(g_allocations.load() - before_cubic, 0);
+  EXPECT_EQ(allocations_in_steps(s), 0);
   EXPECT_GT(s.cubic_admm_iterations(), 0);
   // Avoid Self-Intersections: switching it on allocates its guard; a step it checks does not (its
   // hierarchy, task list and contact buffers are kept from step to step).
   s.set_avoid_self_intersections(true);
-  for (int i = 0; i < 3; ++i) s.step();
-  const long before_guard = g_allocations.load();
-  for (int i = 0; i < 5; ++i) s.step();
-  EXPECT_EQ(g_allocations.load() - before_guard, 0);
+  EXPECT_EQ(allocations_in_steps(s), 0);
   // Resolution Independent: switching it on allocates its weights; its steps (the bending term's pull
   // on every rotation fit, both methods) do not.
   s.set_avoid_self_intersections(false);
   s.set_resolution_independent(true);
-  for (int i = 0; i < 3; ++i) s.step();
-  const long before_resolution_cubic = g_allocations.load();
-  for (int i = 0; i < 5; ++i) s.step();
-  EXPECT_EQ(g_allocations.load() - before_resolution_cubic, 0);
+  EXPECT_EQ(allocations_in_steps(s), 0);
   s.set_method(gauss::Method::gauss);
-  for (int i = 0; i < 3; ++i) s.step();
-  const long before_resolution_gauss = g_allocations.load();
-  for (int i = 0; i < 5; ++i) s.step();
-  EXPECT_EQ(g_allocations.load() - before_resolution_gauss, 0);
+  EXPECT_EQ(allocations_in_steps(s), 0);
 }
 
-TEST(StepAllocations, SculptScaleStepsDoNotAllocate) {
-  // What a mesh of a million vertices or more gets (shown here on a small one): lean steps, and a
-  // global solve on a factor in floats refined against A, whose scratch is
-  // made with the factor.
+TEST(StepAllocations, LeanStepsDoNotAllocate) {
+  // What a mesh of a million vertices or more steps with (shown here on a small one): lean steps
+  // (gauss_solver.h), with Resolution Independent's bending term.
   const gauss::TriangleMesh m = gauss_test::icosphere(5);
   gauss::GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces(), {0, 17});
   s.set_styles({gauss::PreferenceFunction(gauss::preset_style("cube"))});
   s.set_lean_steps(true);
   s.set_resolution_independent(true);
-  for (int i = 0; i < 3; ++i) s.step();
-  const long before = g_allocations.load();
-  for (int i = 0; i < 5; ++i) s.step();
-  EXPECT_EQ(g_allocations.load() - before, 0);
-
-  Eigen::SparseMatrix<double> A(300, 300);
-  std::vector<Eigen::Triplet<double>> entries;
-  for (int i = 0; i < 300; ++i) {
-    entries.emplace_back(i, i, 4.0);
-    if (i > 0) entries.emplace_back(i, i - 1, -1.0);
-  }
-  A.setFromTriplets(entries.begin(), entries.end());
-  gauss::CholeskySolver single;
-  single.factor(A, nullptr, gauss::CholeskySolver::Precision::single_values);
-  std::vector<double> y(3 * 300, 1.0);
-  const long before_solve = g_allocations.load();
-  single.solve_ordered_in_place(y.data());
-  EXPECT_EQ(g_allocations.load() - before_solve, 0);
+  EXPECT_EQ(allocations_in_steps(s), 0);
 }
 
 TEST(StepAllocations, SheetMetalStepsDoNotAllocate) {
@@ -144,10 +120,7 @@ TEST(StepAllocations, SheetMetalStepsDoNotAllocate) {
   std::vector<double> w(2 * static_cast<size_t>(m.num_faces()));
   for (int f = 0; f < m.num_faces(); ++f) w[2 * f] = 1.0, w[2 * f + 1] = f % 2 ? 0.5 : 0.0;
   s.set_face_weights(w.data(), m.num_faces(), 2);
-  for (int i = 0; i < 3; ++i) s.step();
-  const long before_blend = g_allocations.load();
-  for (int i = 0; i < 5; ++i) s.step();
-  EXPECT_EQ(g_allocations.load() - before_blend, 0);
+  EXPECT_EQ(allocations_in_steps(s), 0);
 }
 
 TEST(StepAllocations, CholeskySolveDoesNotAllocate) {
@@ -167,13 +140,18 @@ TEST(StepAllocations, CholeskySolveDoesNotAllocate) {
   for (int i = 0; i < n; ++i) entries.emplace_back(i, i, diagonal[i]);
   Eigen::SparseMatrix<double> A(n, n);
   A.setFromTriplets(entries.begin(), entries.end());
-  gauss::CholeskySolver s;
-  s.factor(A);
-  std::vector<double> y(3 * static_cast<size_t>(n), 1.0);
-  s.solve_ordered_in_place(y.data());  // warm-up: the thread pool starts its workers
-  const long before = g_allocations.load();
-  for (int i = 0; i < 3; ++i) s.solve_ordered_in_place(y.data());
-  EXPECT_EQ(g_allocations.load() - before, 0);
+  // In doubles, and in floats refined against A (a million unknowns and more), whose scratch is made
+  // with the factor.
+  for (auto precision : {gauss::CholeskySolver::Precision::double_values,
+                         gauss::CholeskySolver::Precision::single_values}) {
+    gauss::CholeskySolver s;
+    s.factor(A, nullptr, precision);
+    std::vector<double> y(3 * static_cast<size_t>(n), 1.0);
+    s.solve_ordered_in_place(y.data());  // warm-up: the thread pool starts its workers
+    const long before = g_allocations.load();
+    for (int i = 0; i < 3; ++i) s.solve_ordered_in_place(y.data());
+    EXPECT_EQ(g_allocations.load() - before, 0) << "single precision " << s.single_precision();
+  }
 }
 
 TEST(StepAllocations, ProxyTransferDoesNotAllocate) {

@@ -32,10 +32,10 @@ class MeshArrays:
         read_base_coords(mesh, self.coords)
         (self.triangles, self.tri_polygon, self.corner_vertex, corner_polygon,
          self.polygon_sides) = read_faces(mesh)
-        # On a mesh of triangles corner_polygon is made when asked for: kept, it is 48 MB at 4M
+        # On a mesh of triangles (as many triangles as polygons: a polygon has at least one) polygon p
+        # is triangle p, and corner_polygon is made only when asked for: kept, it is 48 MB at 4M
         # triangles for the whole run (docs/performance.md#sculpt-scale).
-        self._corner_polygon = None if self.num_polygons == len(self.tri_polygon) == len(corner_polygon) // 3 \
-            else corner_polygon
+        self._corner_polygon = None if len(self.tri_polygon) == self.num_polygons else corner_polygon
 
     @property
     def corner_polygon(self):
@@ -45,6 +45,9 @@ class MeshArrays:
 
     def polygon_average(self, vertex_values):
         """Mean of a per-vertex float array over each polygon's corners."""
+        if self._corner_polygon is None:  # triangles: the corners' sum in the same order, in doubles
+            values = np.asarray(vertex_values, np.float64)
+            return (values[self.triangles[:, 0]] + values[self.triangles[:, 1]] + values[self.triangles[:, 2]]) / 3
         sums = np.bincount(self.corner_polygon, weights=vertex_values[self.corner_vertex],
                            minlength=self.num_polygons)
         return sums / np.maximum(self.polygon_sides, 1)

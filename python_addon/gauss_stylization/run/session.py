@@ -340,12 +340,11 @@ class Session:
                 % "{:,}".format(self.arrays.num_vertices), build)
 
     def leave_proxy(self):
-        """Once finish_task() has read what the finish needs of the proxy: its map and the worker's
-        buffers go, so that they do not sit beside the full-resolution solver being built (at 2M
-        vertices about 0.2 GB of the finish's peak). Nothing steps until finish_on(); the proxy's
-        solver stays until then for what the status reads of it, and a cancel restores the mesh
-        without either."""
-        self.stop_stepping()
+        """Once finish_task() has read what the finish needs of the proxy (and stopped its worker):
+        its map and the worker's buffers go, so that they do not sit beside the full-resolution solver
+        being built (at 2M vertices about 0.2 GB of the finish's peak). Nothing steps until
+        finish_on(); the proxy's solver stays until then for what the status reads of it, and a cancel
+        restores the mesh without either."""
         self.proxy = self.plan.proxy = self._proxy_result = None
         self._worker_result = self._worker_proxy = None
 

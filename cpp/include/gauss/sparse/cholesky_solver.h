@@ -80,7 +80,7 @@ class CholeskySolver {
   void backward(const T* values, int first_super, int last_super, double* y) const;
   template <class T>
   void sweeps(const T* values, double* y) const;  // y := (L L^T)^-1 y, L's values in `values`
-  void subtract_product(const double* x, double* r) const;  // r -= A x (single precision: A_lower_)
+  void subtract_product(const double* x, double* r) const;  // r -= A x (A from a_start_, a_rows_, a_values_)
 
   int n_ = 0;
   long long nonzeros_ = 0;
