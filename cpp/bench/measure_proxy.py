@@ -5,7 +5,8 @@ mesh and finished there by warm-started steps, ends from a run on the mesh from 
 (docs/performance.md#sculpt-scale).
 
 usage: measure_proxy.py [--n 409 | --mesh PATH [--levels L]] [--target 75000] [--ticks 100]
-                        [--compare] [--lam 4] [--style cube] [--cap 1000]
+                        [--compare] [--lam 4] [--style cube] [--cap 1000] [--tol 1e-3]
+                        [--resolution-independent]
 --n: scale_mesh.cube_sphere(n) (409: 1,003,688 vertices; 580: 2,018,402); --mesh: an OBJ/PLY file,
 midpoint-subdivided --levels times (scripts/subdivide_mesh.py). Prints "proxy ..." lines; peak memory
 from getrusage (the process's whole peak, solvers included). Imports gauss_core from
@@ -36,10 +37,10 @@ def peak_mb():
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
 
-def run(V, F, style, lam, cap, start=None, tol=1e-3):
+def run(V, F, style, lam, cap, start=None, tol=1e-3, independent=False):
     """(solver, steps, seconds to converge, set-up seconds) of a run until converged from `start`."""
     t = time.perf_counter()
-    solver = gauss_core.Solver(V, F, lam=lam, tolerance=tol)
+    solver = gauss_core.Solver(V, F, lam=lam, tolerance=tol, resolution_independent=independent)
     solver.set_styles([style])
     setup = time.perf_counter() - t
     if start is not None:
@@ -61,6 +62,8 @@ def main():
     ap.add_argument("--style", default="cube", choices=gauss_core.PRESETS)
     ap.add_argument("--cap", type=int, default=1000)
     ap.add_argument("--tol", type=float, default=1e-3, help="--compare: the tolerance both full-resolution runs step to")
+    ap.add_argument("--resolution-independent", action="store_true",
+                    help="every solver with Resolution Independent, as the add-on's new objects have it")
     args = ap.parse_args()
 
     if args.mesh:
@@ -86,7 +89,8 @@ def main():
                                    np.percentile(distance, 95), distance.max()), flush=True)
     style = gauss_core.Style.preset(args.style)
     t = time.perf_counter()
-    small = gauss_core.Solver(proxy.vertices, proxy.triangles, lam=args.lam)
+    small = gauss_core.Solver(proxy.vertices, proxy.triangles, lam=args.lam,
+                              resolution_independent=args.resolution_independent)
     small.set_styles([style])
     solver_setup = time.perf_counter() - t
     print("proxy solver set-up: %.2f s; set-up before the first tick: %.2f s" % (solver_setup, made + solver_setup),
@@ -117,10 +121,12 @@ def main():
     small.vertices_into(proxy_now)
     proxy.transfer(proxy_now, out)
     transferred = out.astype(np.float64)
-    warm, warm_steps, warm_s, full_setup = run(V, F, style, args.lam, args.cap, start=transferred, tol=args.tol)
+    warm, warm_steps, warm_s, full_setup = run(V, F, style, args.lam, args.cap, start=transferred, tol=args.tol,
+                                                independent=args.resolution_independent)
     finished = warm.vertices
     del warm
-    scratch, scratch_steps, scratch_s, _ = run(V, F, style, args.lam, args.cap, tol=args.tol)
+    scratch, scratch_steps, scratch_s, _ = run(V, F, style, args.lam, args.cap, tol=args.tol,
+                                                       independent=args.resolution_independent)
     reference = scratch.vertices
     del scratch
     shares = [style_share(x, F, style) for x in (V, reference, transferred, finished)]

@@ -184,7 +184,9 @@ class GaussSolver {
   // the next step, e.g. the previous frame's result in an animation bake. The rest shape, styles and
   // factorization stay; pins stay at their targets and vertices no face uses at their input
   // positions; the step count is kept. What the iteration carried over from earlier steps (the
-  // rotation fit's warm start) is reset as reset() does, so the steps that follow depend on V alone.
+  // rotation fit's warm start, the bending term's rotations) is made anew: identity as reset() makes
+  // it, or with Resolution Independent the rotations of V itself, so the steps that follow depend on
+  // V alone.
   // Throws std::invalid_argument, changing nothing, unless every coordinate is finite and every vertex
   // that faces use lies within settings::max_pin_distance times the mesh's size of it.
   void set_vertices(const double* V, int count);
@@ -250,6 +252,7 @@ class GaussSolver {
   Eigen::Matrix3d face_covariance(int f) const;
   Eigen::Matrix3d face_covariance(int f, const Eigen::Vector3d* e) const;
   void fit_rotations();  // rotation_ from the faces' covariances
+  void fit_rotations_of_start();  // rotation_ of the current vertices alone (set_vertices)
   // With resolution_independent: per vertex, the bending term's sum_j beta_ij w_ij R_j (R of the last
   // step), and with square_flat_regions the squaring pull square_prior_, which the rotation fits add to
   // their covariance; nullptr when both are off.
