@@ -56,6 +56,7 @@ class Option:
 
 GUARD = {"avoid_self_intersections": True}
 SQUARE = {"square_flat_regions": True}
+INDEPENDENT = {"resolution_independent": True}  # the add-on's default for new objects
 
 OPTIONS = [
     Option("cube"),
@@ -66,6 +67,9 @@ OPTIONS = [
     Option("tetrahedron l10 +avoid", preset="tetrahedron", lam=10.0, keywords=GUARD, tags=("guard",),
            plain="tetrahedron l10"),
     Option("cube +keep volume", keywords={"keep_volume": True}),
+    Option("cube +independent", keywords=INDEPENDENT, tags=("independent",), plain="cube"),
+    Option("tetrahedron l10 +independent", preset="tetrahedron", lam=10.0, keywords=INDEPENDENT,
+           tags=("independent",), plain="tetrahedron l10"),
     Option("cube painted 0.5", weights=uniform_weight(0.5), tags=("paint",), plain="cube"),
     Option("cube painted 0-1", weights=gradient_weights, tags=("paint",), plain="cube"),
     Option("cube pinned 5%", pins=lowest_vertices(0.05), plain="cube"),
