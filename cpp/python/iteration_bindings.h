@@ -49,6 +49,9 @@ void bind_iteration(pybind11::class_<SolverWrapper>& cls) {
           throw py::value_error(msg.str());
         }
         std::vector<double> v = read_matrix<double>(arr, 3, "vertices", false);
+        // With Resolution Independent it fits the start's rotations (seconds at a million vertices):
+        // a worker thread's warm start must not hold Blender's Python.
+        py::gil_scoped_release release;
         std::lock_guard<std::mutex> lock(s.mutex());
         s.core().set_vertices(v.data(), static_cast<int>(v.size() / 3));
       }, py::arg("vertices"),

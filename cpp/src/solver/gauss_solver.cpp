@@ -291,34 +291,36 @@ void GaussSolver::update_square_prior() {
   }
 }
 
-const Matrix3d* GaussSolver::rotation_prior() {
-  if (!resolution_independent_ && !square_flat_regions_) return nullptr;
+Matrix3d GaussSolver::rotation_prior_at(int v) const {
   // The bending term beta sum_ij w_ij |R_i - R_j|^2 (docs/resolution.md) adds beta w_ij R_j to vertex i's
   // rotation fit; R_j from the previous step, so that every vertex fits at once. The cubic method's
   // covariance weights each half-edge by the whole edge weight, twice ARAP's spokes and rims, and so
   // bends twice as stiffly: its term is doubled to match.
   const double factor = method_ == Method::cubic ? 2.0 : 1.0;
+  Matrix3d P = Matrix3d::Zero();
+  if (resolution_independent_) {
+    const double beta_v = bending_beta_[v];
+    for (int i = topo_.vertex_corner_start[v]; i < topo_.vertex_corner_start[v + 1]; ++i) {
+      const int c = topo_.vertex_corners[i], f = c / 3, k = c % 3, k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+      const auto& t = topo_.faces[f];
+      // Corner k heads slot k (to corner k+1) and ends slot k+2 (from corner k+2). A slot's weight
+      // is beta w+: its ends' mean beta times its cotangent weight, negative ones left out (they
+      // would reward bending).
+      const double w_out = 0.5 * (beta_v + bending_beta_[t[k1]]) * std::max(0.0, slot_weight_[f][k]);
+      const double w_in = 0.5 * (bending_beta_[t[k2]] + beta_v) * std::max(0.0, slot_weight_[f][k2]);
+      P += (factor * w_out) * rotation_[t[k1]];
+      P += (factor * w_in) * rotation_[t[k2]];
+    }
+  }
+  if (square_flat_regions_) P += factor * square_prior_[v];  // its pull, in ARAP's units like the bending
+  return P;
+}
+
+const Matrix3d* GaussSolver::rotation_prior() {
+  if (!resolution_independent_ && !square_flat_regions_) return nullptr;
   const int nV = topo_.num_vertices;
   rotation_prior_.resize(nV);
-  parallel::for_each(nV, parallel::kMinParallelItems, [&](int v) {
-    Matrix3d P = Matrix3d::Zero();
-    if (resolution_independent_) {
-      const double beta_v = bending_beta_[v];
-      for (int i = topo_.vertex_corner_start[v]; i < topo_.vertex_corner_start[v + 1]; ++i) {
-        const int c = topo_.vertex_corners[i], f = c / 3, k = c % 3, k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-        const auto& t = topo_.faces[f];
-        // Corner k heads slot k (to corner k+1) and ends slot k+2 (from corner k+2). A slot's weight
-        // is beta w+: its ends' mean beta times its cotangent weight, negative ones left out (they
-        // would reward bending).
-        const double w_out = 0.5 * (beta_v + bending_beta_[t[k1]]) * std::max(0.0, slot_weight_[f][k]);
-        const double w_in = 0.5 * (bending_beta_[t[k2]] + beta_v) * std::max(0.0, slot_weight_[f][k2]);
-        P += (factor * w_out) * rotation_[t[k1]];
-        P += (factor * w_in) * rotation_[t[k2]];
-      }
-    }
-    if (square_flat_regions_) P += factor * square_prior_[v];  // its pull, in ARAP's units like the bending
-    rotation_prior_[v] = P;
-  });
+  parallel::for_each(nV, parallel::kMinParallelItems, [&](int v) { rotation_prior_[v] = rotation_prior_at(v); });
   return rotation_prior_.data();
 }
 

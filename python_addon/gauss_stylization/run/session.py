@@ -326,16 +326,24 @@ class Session:
         regions = self.plan.regions_for(settings, self.weights)
         new_styles = styles.make_styles(self.gauss_core, settings.styles)
         coords, triangles = self.arrays.coords, self.arrays.triangles
+        start = self.result  # the proxy's transfer; nothing writes it until finish_on()
 
         def build(progress):
+            # The warm start too, off the main thread: with Resolution Independent set_vertices
+            # settles the bending term's rotations for the start (seconds at a million vertices).
             try:
                 solver = self.gauss_core.Solver(coords, triangles, pinned=pins if len(pins) else None,
                                                 progress=progress, **options)
+                solver.set_styles(new_styles)
+                solver.set_face_weights(*regions)
+                solver.set_vertices(start)
+                if len(targets):
+                    solver.set_pin_positions(targets)
             except self.gauss_core.Cancelled:
                 raise
             except (ValueError, TypeError, RuntimeError, MemoryError) as exc:
                 raise _solver_error(exc) from exc
-            return solver, new_styles, regions, targets
+            return solver
         return (self.arrays.num_vertices, "Preparing %s vertices at full resolution"
                 % "{:,}".format(self.arrays.num_vertices), build)
 
@@ -348,18 +356,10 @@ class Session:
         self.proxy = self.plan.proxy = self._proxy_result = None
         self._worker_result = self._worker_proxy = None
 
-    def finish_on(self, built):
-        """Go on at full resolution with ``built`` (finish_task()'s result), warm-started from the
-        shape the proxy's transfer gave the mesh; steps from now on write the mesh directly."""
-        solver, new_styles, regions, targets = built
-        try:
-            solver.set_styles(new_styles)
-            solver.set_face_weights(*regions)
-            solver.set_vertices(self.result)
-            if len(targets):
-                solver.set_pin_positions(targets)
-        except (ValueError, TypeError) as exc:
-            raise _solver_error(exc) from exc
+    def finish_on(self, solver):
+        """Go on at full resolution with ``solver`` (finish_task()'s result: styled, weighted, pinned
+        and warm-started from the shape the proxy's transfer gave the mesh); steps from now on write
+        the mesh directly."""
         self.solver, self.proxy, self._proxy_result = solver, None, None
         self.pin_changes += 1  # handles of the proxy's pins are stale
         self.finished_on_proxy = True

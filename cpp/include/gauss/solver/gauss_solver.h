@@ -257,6 +257,7 @@ class GaussSolver {
   // step), and with square_flat_regions the squaring pull square_prior_, which the rotation fits add to
   // their covariance; nullptr when both are off.
   const Eigen::Matrix3d* rotation_prior();
+  Eigen::Matrix3d rotation_prior_at(int v) const;  // vertex v's row of rotation_prior(), from rotation_
   void admm_round(bool first_round);
   // The global step's right-hand side from rotation_: Eq. 27's (the Gauss method: ARAP's targets and
   // the lambda w e* pull), plain ARAP's over the faces, or the cubic method's (per vertex).
