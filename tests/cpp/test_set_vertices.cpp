@@ -82,8 +82,8 @@ TEST(SetVertices, AWarmStartKeepsItsLookWithResolutionIndependent) {
   // The bending term reads the last step's rotations. On a mesh much finer than the reference face
   // area (here a reference 40 times the faces' area) it outweighs each vertex's own fit, and a warm
   // start left with the rest shape's identity rotations drifted 17% of its displacement back towards
-  // the rest shape within a few steps (ARAP's own fit of the shape alone: 9%; the fit settled with the
-  // bending term: 0.6%).
+  // the rest shape within a few steps (ARAP's own fit of the shape alone: 9%; with 15 sweeps of the fit
+  // with the bending term: 1.8%, with 30: 0.6%).
   const gauss::TriangleMesh m = gauss_test::icosphere(4);
   const auto fine = [&] {
     GaussSolver s = make(m);
@@ -105,7 +105,7 @@ TEST(SetVertices, AWarmStartKeepsItsLookWithResolutionIndependent) {
     double drift = 0;
     for (size_t i = 0; i < result.size(); i += 3)
       drift += std::hypot(now[i] - result[i], now[i + 1] - result[i + 1], now[i + 2] - result[i + 2]);
-    EXPECT_LT(drift, 0.02 * displaced) << "step " << k + 1 << " from the converged result";
+    EXPECT_LT(drift, 0.03 * displaced) << "step " << k + 1 << " from the converged result";
   }
 }
 
