@@ -279,13 +279,17 @@ void GaussSolver::fit_rotations_of_start() {
   // Jacobi sweeps of the fit with the bending term, the shape held, towards the rotations the term
   // settles to for it (docs/resolution.md#warm-starts).
   // Each vertex's covariance is summed once, into rotation_prior_ (refilled at every step); a sweep
-  // reads the neighbours' rotations of the sweep before (rotation_) and fits into rotation_q_.
+  // reads the neighbours' rotations of the sweep before (rotation_) and fits into rotation_q_. The
+  // cubic method's covariance weighs each half-edge by the whole edge weight, twice ARAP's, and its
+  // bending term is doubled to match (rotation_prior_at): so is ARAP's covariance here.
   const int nV = topo_.num_vertices;
+  const double scale = method_ == Method::cubic ? 2.0 : 1.0;
   rotation_prior_.resize(nV);
   parallel::for_each(nV, parallel::kMinParallelItems, [&](int v) {
     Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
     for (int i = topo_.vertex_corner_start[v]; i < topo_.vertex_corner_start[v + 1]; ++i)
       M += face_covariance(topo_.vertex_corners[i] / 3);
+    M *= scale;
     rotation_prior_[v] = M;
     rotation_q_[v] = Eigen::Quaterniond(closest_rotation(M));
     rotation_[v] = rotation_q_[v].toRotationMatrix();
