@@ -9,25 +9,14 @@
 #include <utility>
 #include <vector>
 
-#include "gauss/solver/closest_rotation.h"
 #include "gauss/solver/gauss_solver.h"
 #include "gauss/util/memory_budget.h"
-#include "gauss/util/parallel.h"
 #include "gauss/settings.h"
 
 namespace gauss {
 
 using Eigen::Vector3d;
 
-namespace {
-// fit_rotations_of_start(): at most this many sweeps (each about a fifth of a step's time), stopping
-// once no rotation matrix entry changes by more than kStartRotationChange in one. On a mesh 40 times
-// finer than the reference (test_set_vertices.cpp) a converged result set as the start then drifts
-// 1.8% of its displacement in ten steps (30 sweeps: 0.6%, none: 9%); a bake's frame on the 35K bunny
-// pays 60 ms for them (30 sweeps: 120 ms, against 86 ms of set-up and 19 ms a step).
-constexpr int kStartRotationSweeps = 15;
-constexpr double kStartRotationChange = 1e-3;
-}  // namespace
 
 void GaussSolver::set_lambda(double lambda) {
   settings::lambda.check(lambda);
@@ -268,43 +257,6 @@ void GaussSolver::set_vertices(const double* V, int count) {
   }
   if (cubic_ready_) cubic_.reset();  // the cubic method's ADMM warm start, as reset() clears it
   iteration_.invalidate();
-}
-
-void GaussSolver::fit_rotations_of_start() {
-  // The bending term reads the last step's rotations. A warm start's are made from its own shape, not
-  // left at the rest shape's identity: on a mesh much finer than the reference face area the term
-  // outweighs a vertex's own fit hundreds of times over, and identity rotations turned a whole start
-  // back towards the rest shape's orientation in its first steps (a 500K-vertex sphere finished from
-  // its proxy's cube look fell from a share of 0.93 to 0.45). ARAP's own fit of the shape first, then
-  // Jacobi sweeps of the fit with the bending term, the shape held, towards the rotations the term
-  // settles to for it (docs/resolution.md#warm-starts).
-  // Each vertex's covariance is summed once, into rotation_prior_ (refilled at every step); a sweep
-  // reads the neighbours' rotations of the sweep before (rotation_) and fits into rotation_q_. The
-  // cubic method's covariance weighs each half-edge by the whole edge weight, twice ARAP's, and its
-  // bending term is doubled to match (rotation_prior_at): so is ARAP's covariance here.
-  const int nV = topo_.num_vertices;
-  const double scale = method_ == Method::cubic ? 2.0 : 1.0;
-  rotation_prior_.resize(nV);
-  parallel::for_each(nV, parallel::kMinParallelItems, [&](int v) {
-    Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
-    for (int i = topo_.vertex_corner_start[v]; i < topo_.vertex_corner_start[v + 1]; ++i)
-      M += face_covariance(topo_.vertex_corners[i] / 3);
-    M *= scale;
-    rotation_prior_[v] = M;
-    rotation_q_[v] = Eigen::Quaterniond(closest_rotation(M));
-    rotation_[v] = rotation_q_[v].toRotationMatrix();
-  });
-  std::vector<double> change(nV, 0.0);
-  for (int sweep = 0; sweep < kStartRotationSweeps; ++sweep) {
-    parallel::for_each(nV, parallel::kMinParallelItems, [&](int v) {
-      Eigen::Matrix3d R = rotation_[v];
-      closest_rotation_warm(rotation_prior_[v] + rotation_prior_at(v), rotation_q_[v], R);
-      change[v] = (R - rotation_[v]).cwiseAbs().maxCoeff();
-    });
-    parallel::for_each(nV, parallel::kMinParallelItems,
-                       [&](int v) { rotation_[v] = rotation_q_[v].toRotationMatrix(); });
-    if (*std::max_element(change.begin(), change.end()) < kStartRotationChange) break;
-  }
 }
 
 }  // namespace gauss

@@ -251,13 +251,17 @@ class GaussSolver {
   // Face f's ARAP covariance sum_k w_k e_k ehat_k^T at X_ (e: its edge vectors there, if at hand).
   Eigen::Matrix3d face_covariance(int f) const;
   Eigen::Matrix3d face_covariance(int f, const Eigen::Vector3d* e) const;
+  Eigen::Matrix3d vertex_covariance(int v) const;  // sum of face_covariance over vertex v's faces
   void fit_rotations();  // rotation_ from the faces' covariances
   void fit_rotations_of_start();  // rotation_ of the current vertices alone (set_vertices)
   // With resolution_independent: per vertex, the bending term's sum_j beta_ij w_ij R_j (R of the last
   // step), and with square_flat_regions the squaring pull square_prior_, which the rotation fits add to
   // their covariance; nullptr when both are off.
   const Eigen::Matrix3d* rotation_prior();
-  Eigen::Matrix3d rotation_prior_at(int v) const;  // vertex v's row of rotation_prior(), from rotation_
+  // P += vertex v's row of rotation_prior(), from rotation_, its terms weighed by `factor`
+  // (rotation_prior_factor(): the method's).
+  void add_rotation_prior(int v, double factor, Eigen::Matrix3d& P) const;
+  double rotation_prior_factor() const;
   void admm_round(bool first_round);
   // The global step's right-hand side from rotation_: Eq. 27's (the Gauss method: ARAP's targets and
   // the lambda w e* pull), plain ARAP's over the faces, or the cubic method's (per vertex).
