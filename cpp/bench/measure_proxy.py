@@ -4,9 +4,10 @@ the shape, the transfer per tick, memory; with --compare, how far a run on the p
 mesh and finished there by warm-started steps, ends from a run on the mesh from scratch
 (docs/performance.md#sculpt-scale).
 
-usage: measure_proxy.py [--n 409 | --mesh PATH [--levels L]] [--target 75000] [--ticks 100]
+usage: measure_proxy.py [--n 409 | --mesh PATH [--levels L]] [--target N] [--ticks 100]
                         [--compare] [--lam 4] [--style cube] [--cap 1000] [--tol 1e-3]
                         [--resolution-independent]
+--target: the proxy's vertices (default: the add-on's, proxy_run.PROXY_VERTICES);
 --n: scale_mesh.cube_sphere(n) (409: 1,003,688 vertices; 580: 2,018,402); --mesh: an OBJ/PLY file,
 midpoint-subdivided --levels times (scripts/subdivide_mesh.py). Prints "proxy ..." lines; peak memory
 from getrusage (the process's whole peak, solvers included). Imports gauss_core from
@@ -33,6 +34,17 @@ from scale_mesh import cube_sphere  # noqa: E402
 from subdivide_mesh import midpoint_subdivide  # noqa: E402
 
 
+def addon_proxy_vertices():
+    """The add-on's proxy size (run/proxy_run.py; numpy only, read without importing the add-on's
+    package, which needs bpy)."""
+    import importlib.util
+    path = REPO / "python_addon" / "gauss_stylization" / "run" / "proxy_run.py"
+    spec = importlib.util.spec_from_file_location("proxy_run", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.PROXY_VERTICES
+
+
 def peak_mb():
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
@@ -55,7 +67,7 @@ def main():
     ap.add_argument("--n", type=int, default=409)
     ap.add_argument("--mesh")
     ap.add_argument("--levels", type=int, default=0)
-    ap.add_argument("--target", type=int, default=75000)
+    ap.add_argument("--target", type=int, default=addon_proxy_vertices())
     ap.add_argument("--ticks", type=int, default=100)
     ap.add_argument("--compare", action="store_true")
     ap.add_argument("--lam", type=float, default=4.0)
