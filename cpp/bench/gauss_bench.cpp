@@ -12,9 +12,11 @@
 // AFTER, the pairs of faces that cross in the input and in the result (each pair once; Blender's
 // BVHTree.overlap lists each twice), and step_held_vertices_max, the most vertices the guard held back
 // in one step; with the guard also contact_springs_max and contact_iterations_median (contact_springs.h),
-// whose stiffness --contact-stiffness sets (0: the guard alone). --resolution-independent weights each face's preference by its area
-// (settings::resolution_independent, docs/resolution.md); --reference-face-area sets its reference
-// density (default settings::reference_face_area), to measure that choice.
+// whose stiffness --contact-stiffness sets (0: the guard alone). --resolution-independent tops the bending of a finer mesh up to
+// the reference density's and weighs a coarser face's preference by its area
+// (settings::resolution_independent, docs/resolution.md); --weigh-finer-faces adds that setting's rule
+// before 2026-12-06 (settings::weigh_finer_faces); --reference-face-area sets its reference density
+// (default settings::reference_face_area), to measure that choice.
 // A preset's name may be written with '-' for '_' (--style sheet-metal); sheet_metal runs at
 // settings::sheet_metal_lambda unless --lambda says otherwise. Every run prints
 // developability: IN -> OUT (mesh/developability.h) and flat_vertices_share: IN -> OUT, the share of
@@ -63,7 +65,7 @@ int usage() {
                "usage: gauss_bench MESH [--method %s] [--style %s] [--lambda %g (cubic: %g)] [--sigma %g] [--mu %g]\n"
                "                   [--steps %d] [--admm %d] [--until TOL (e.g. %g; then --steps is the cap, default %d)]\n"
                "                   [--acceleration %s] [--avoid-self-intersections [--contact-stiffness K (default %g)]]\n"
-               "                   [--resolution-independent]\n"
+               "                   [--resolution-independent [--weigh-finer-faces]]\n"
                "                   [--reference-face-area A (default %g)] [--square-flat-regions]\n"
                "                   [--threads N] [--out OUT.obj]\n",
                settings::default_method, settings::default_preset, settings::lambda.default_value,
@@ -90,6 +92,7 @@ int main(int argc, char** argv) {
   bool acceleration = settings::acceleration.default_value;
   bool avoid_self_intersections = settings::avoid_self_intersections.default_value;
   bool resolution_independent = settings::resolution_independent.default_value;
+  bool weigh_finer_faces = settings::weigh_finer_faces.default_value;
   double reference_face_area = settings::reference_face_area;
   double contact_stiffness = gauss::ContactSprings::kDefaultStiffness;
   bool square_flat_regions = settings::square_flat_regions.default_value;
@@ -101,6 +104,10 @@ int main(int argc, char** argv) {
     }
     if (a == "--resolution-independent") {
       resolution_independent = true;
+      continue;
+    }
+    if (a == "--weigh-finer-faces") {
+      weigh_finer_faces = true;
       continue;
     }
     if (a == "--square-flat-regions") {
@@ -159,6 +166,7 @@ int main(int argc, char** argv) {
     solver.set_avoid_self_intersections(avoid_self_intersections);
     solver.set_contact_stiffness(contact_stiffness);
     solver.set_resolution_independent(resolution_independent);
+    solver.set_weigh_finer_faces(weigh_finer_faces);
     solver.set_reference_face_area(reference_face_area);
     solver.set_square_flat_regions(square_flat_regions);
     const double setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -258,8 +266,8 @@ int main(int argc, char** argv) {
       return p;
     };
     std::printf("avoid_self_intersections: %s\n", avoid_self_intersections ? "on" : "off");
-    std::printf("resolution_independent: %s (reference face area %g)\n", resolution_independent ? "on" : "off",
-                reference_face_area);
+    std::printf("resolution_independent: %s (reference face area %g%s)\n", resolution_independent ? "on" : "off",
+                reference_face_area, weigh_finer_faces ? ", finer faces weighed" : "");
     std::printf("intersecting_pairs: %lld -> %lld\n",
                 static_cast<long long>(gauss::count_self_intersections(triangles, points(mesh.V))),
                 static_cast<long long>(gauss::count_self_intersections(triangles, points(result))));

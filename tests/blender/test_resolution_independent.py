@@ -1,5 +1,6 @@
 """Resolution Independent: on for new objects, off for objects of files saved before it existed (their
-result is kept, settings/versioning.py), and passed to the solver (docs/resolution.md)."""
+result is kept, settings/versioning.py), and passed to the solver (docs/resolution.md). Its rule before
+settings version 3 (weigh_finer_faces) stays with the files and recipes made under it."""
 
 import bpy
 import numpy as np
@@ -42,7 +43,7 @@ def _save_as_version(addon, path, version):
 
 
 def test_objects_saved_before_the_setting_existed_open_with_it_off(addon, tmp_path):
-    assert addon.settings.versioning.VERSION == 2
+    assert addon.settings.schema.field(addon.settings.schema.OBJECT, FIELD).since == 2
     for version in (0, 1):
         helpers.clear_scene()
         with_slot, without = helpers.suzanne(levels=0), helpers.uv_sphere(8, 4)
@@ -87,3 +88,68 @@ def test_it_changes_the_result(addon):
         results[value] = helpers.coords(obj)
         helpers.clear_scene()
     assert np.abs(results[True] - results[False]).max() > 1e-4
+
+
+OLD_RULE = "weigh_finer_faces"
+
+
+def _tetrahedron_suzanne():
+    obj = helpers.suzanne(levels=1)
+    helpers.add_slot(obj, 'TETRAHEDRON')
+    return obj
+
+
+def test_objects_saved_under_version_2_keep_its_rule(addon, tmp_path):
+    """A file saved at settings version 2 (Resolution Independent on, its rule then weighing every face)
+    opens with that rule and stylizes as it did; new objects get today's."""
+    versioning = addon.settings.versioning
+    assert addon.native.facts().defaults[OLD_RULE] is False
+    assert addon.settings.schema.field(addon.settings.schema.OBJECT, OLD_RULE).since == versioning.VERSION == 3
+    obj = _tetrahedron_suzanne()
+    obj.name = "Old"
+    assert obj.gauss_stylization.resolution_independent is True and obj.gauss_stylization.weigh_finer_faces is False
+    results = {}
+    for rule in (True, False):
+        obj.gauss_stylization.weigh_finer_faces = rule
+        run = addon.run.session.Session(obj)
+        run.step(15)
+        results[rule] = run.result.copy()
+        run.cancel()
+    assert not np.array_equal(results[True], results[False])
+    obj.gauss_stylization.property_unset(OLD_RULE)  # version 2 did not know the field
+    obj.gauss_stylization.settings_version = 2
+    path = str(tmp_path / "v2.blend")
+    versioning.unregister_handlers()
+    try:
+        bpy.ops.wm.save_as_mainfile(filepath=path)
+    finally:
+        versioning.register_handlers()
+    helpers.clear_scene()
+    bpy.ops.wm.open_mainfile(filepath=path, load_ui=False)
+    obj = bpy.data.objects["Old"]
+    assert obj.gauss_stylization.weigh_finer_faces is True
+    run = addon.run.session.Session(obj)
+    run.step(15)
+    assert np.array_equal(run.result, results[True])
+    run.cancel()
+    fresh = _tetrahedron_suzanne()
+    assert fresh.gauss_stylization.weigh_finer_faces is False
+
+
+def test_a_recipe_recorded_under_version_2_replays_with_its_rule(addon):
+    """Replay of a run whose recipe predates the field (no weigh_finer_faces in its settings) uses the
+    rule it ran with, whatever the object says now."""
+    obj = _tetrahedron_suzanne()
+    obj.gauss_stylization.weigh_finer_faces = True  # the rule a version-2 object ran with
+    assert helpers.stylize(15) == {'FINISHED'}
+    kept = helpers.coords(obj)
+    store = addon.mesh.recipe_store
+    recipe = store.load(obj.data)
+    for run in recipe["runs"]:
+        assert run["settings"].pop(OLD_RULE) is True  # as version 2 recorded it: without the field
+    store.save(obj.data, recipe)
+    obj.gauss_stylization.weigh_finer_faces = False  # today's rule on the object
+    helpers.activate(obj)
+    assert bpy.ops.object.gauss_replay() == {'FINISHED'}
+    assert np.array_equal(helpers.coords(obj), kept)
+    assert obj.gauss_stylization.weigh_finer_faces is False  # the artist's setting is left as it was

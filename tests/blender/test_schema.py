@@ -108,6 +108,7 @@ LIVE_CHANGES = {
     # Suzanne's eyes touch her head: at lambda 20 the guard holds them back.
     ("object", "avoid_self_intersections"): ({}, dict(lam=20.0), True),
     ("object", "resolution_independent"): ({}, {}, False),  # on for a new object
+    ("object", "weigh_finer_faces"): ({}, {}, True),  # Suzanne's faces are finer than the reference
     ("object", "square_flat_regions"): ({}, {}, True),  # on the mesh of LIVE_MESHES
 }
 # The mesh a live change is tried on where Suzanne would not show it (default: helpers.suzanne(levels=1)).

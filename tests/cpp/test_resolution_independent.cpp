@@ -27,9 +27,11 @@ gauss::TriangleMesh squashed_sphere() {
   return m;
 }
 
-std::vector<double> run(const gauss::TriangleMesh& m, bool on, double reference_area, int steps = 12) {
+std::vector<double> run(const gauss::TriangleMesh& m, bool on, double reference_area, int steps = 12,
+                        bool weigh_finer_faces = false) {
   GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces());
   s.set_resolution_independent(on);
+  s.set_weigh_finer_faces(weigh_finer_faces);
   if (reference_area > 0) s.set_reference_face_area(reference_area);
   for (int i = 0; i < steps; ++i) s.step();
   std::vector<double> out(m.V.size());
@@ -73,6 +75,30 @@ TEST(ResolutionIndependent, SwitchedOnAndOffBeforeAStepLeavesThePlainRunBitForBi
   std::vector<double> out(m.V.size());
   s.copy_vertices(out.data());
   EXPECT_EQ(largest_difference(out, run(m, false, -1)), 0.0);
+}
+
+// The rule before 2026-12-06 (settings::weigh_finer_faces) weighed the finer faces' preference by their
+// area too; today's leaves them alone. So the two differ only on faces finer than the reference, and
+// only with the setting on.
+TEST(WeighFinerFaces, ChangesOnlyTheFacesFinerThanTheReference) {
+  const gauss::TriangleMesh m = squashed_sphere();
+  EXPECT_FALSE(gauss::settings::weigh_finer_faces.default_value);
+  double smallest = INFINITY, largest = 0;
+  for (int f = 0; f < m.num_faces(); ++f) {
+    // Areas in the solver's frame: the sphere's longest side is 2, scaled to 1.
+    const double* p[3] = {&m.V[3 * m.F[3 * f]], &m.V[3 * m.F[3 * f + 1]], &m.V[3 * m.F[3 * f + 2]]};
+    const double u[3] = {p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]};
+    const double v[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+    const double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double area = 0.5 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]) / 4.0;
+    smallest = std::min(smallest, area), largest = std::max(largest, area);
+  }
+  // Every face coarser than the reference: the rules agree bit for bit.
+  EXPECT_EQ(largest_difference(run(m, true, 0.5 * smallest, 12, true), run(m, true, 0.5 * smallest, 12, false)), 0.0);
+  // Every face finer: they differ.
+  EXPECT_GT(largest_difference(run(m, true, 2 * largest, 12, true), run(m, true, 2 * largest, 12, false)), 1e-4);
+  // Without the setting the old rule changes nothing.
+  EXPECT_EQ(largest_difference(run(m, false, -1, 12, true), run(m, false, -1)), 0.0);
 }
 
 }  // namespace test_resolution_independent

@@ -84,3 +84,22 @@ def test_a_change_leaves_the_run_unconverged():
     assert s.converged
     s.resolution_independent = True
     assert not s.converged and s.resolution_independent
+
+
+BUNNY_6K = SHARED_MESHES / "bunny" / "bunny_cubicstylization_6172.obj"
+
+
+@pytest.mark.skipif(not BUNNY_6K.exists(), reason="needs ../shared/meshes")
+def test_tetrahedron_at_lambda_10_settles_where_the_old_rule_swung():
+    """The 6K bunny is about three times finer than the reference: the rule before 2026-12-06
+    (weigh_finer_faces) coupled its faces' normals about three times as strongly, and a few dozen vertices
+    swung back and forth at every step; today's settles (docs/resolution.md)."""
+    V, F = read_obj(BUNNY_6K)
+    tetrahedron = gauss_core.Style.preset("tetrahedron")
+    steps = {}
+    for old_rule in (False, True):
+        s = gauss_core.Solver(V, F, lam=10.0, resolution_independent=True, weigh_finer_faces=old_rule)
+        s.set_styles([tetrahedron])
+        steps[old_rule] = s.step_until(1e-3, 400)
+        assert s.converged is (not old_rule), (old_rule, steps[old_rule], s.last_reldv)
+        assert aligned_share(s.vertices, F, tetrahedron.normals) > 0.9

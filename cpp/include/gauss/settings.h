@@ -121,10 +121,19 @@ inline constexpr Option avoid_self_intersections{
 // on for new objects (docs/resolution.md).
 inline constexpr Option resolution_independent{
     "resolution_independent", false,
-    "Stylize alike at any tessellation of a surface, for both methods: each face's preference is weighed by "
-    "its rest area, and a mesh finer than the reference density gets the bending stiffness ARAP has at the "
-    "reference, so lam (and cubic_lambda) mean the same on a coarse and a subdivided mesh "
-    "(docs/resolution.md). False: the paper's method, bit for bit."};
+    "Stylize alike at any tessellation of a surface, for both methods: a mesh finer than the reference "
+    "density gets the bending stiffness ARAP has at the reference, and the preference of a face coarser than "
+    "the reference is weighed by its rest area, so lam (and cubic_lambda) mean the same on a coarse and a "
+    "subdivided mesh (docs/resolution.md). False: the paper's method, bit for bit."};
+
+// Off by default: Resolution Independent's rule before 2026-12-06, kept so that files saved under it
+// replay as they were (the add-on's settings versioning sets it for them; docs/resolution.md).
+inline constexpr Option weigh_finer_faces{
+    "weigh_finer_faces", false,
+    "With resolution_independent: weigh the preference of faces finer than the reference density by their "
+    "rest area too, as that setting did before 2026-12-06 (files saved then keep their result with it). It "
+    "makes a fine face's coupling up to reference/area times lam, which keeps some runs from settling "
+    "(docs/resolution.md). Without resolution_independent it changes nothing."};
 
 // Off by default: the paper's method has no notion of regions (flat_regions.h).
 inline constexpr Option square_flat_regions{
@@ -134,7 +143,7 @@ inline constexpr Option square_flat_regions{
     "(docs/styles.md, 'Square Flat Regions'). False: no change, bit for bit."};
 
 inline constexpr const Option* options[] = {&keep_volume, &acceleration, &avoid_self_intersections,
-                                            &resolution_independent, &square_flat_regions};
+                                            &resolution_independent, &weigh_finer_faces, &square_flat_regions};
 
 // The face area (solver frame: longest bounding-box side 1) at which Resolution Independent changes
 // nothing; finer meshes are stylized as a mesh of this density is. Why this value:
@@ -227,6 +236,7 @@ constexpr auto solver_settings() {
                              &Solver::set_avoid_self_intersections),
                          row(resolution_independent, &Solver::resolution_independent,
                              &Solver::set_resolution_independent),
+                         row(weigh_finer_faces, &Solver::weigh_finer_faces, &Solver::set_weigh_finer_faces),
                          row(square_flat_regions, &Solver::square_flat_regions,
                              &Solver::set_square_flat_regions));
 }

@@ -43,6 +43,12 @@ void GaussSolver::set_resolution_independent(bool on) {
   iteration_.invalidate();
 }
 
+void GaussSolver::set_weigh_finer_faces(bool on) {
+  if (on == weigh_finer_faces_) return;
+  weigh_finer_faces_ = on;
+  iteration_.invalidate();
+}
+
 void GaussSolver::set_square_flat_regions(bool on) {
   if (on == square_flat_regions_) return;
   square_flat_regions_ = on;

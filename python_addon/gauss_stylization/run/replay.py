@@ -12,6 +12,7 @@ read the recipe with ``recipe(obj)``.
 from ..errors import SettingsError
 from ..mesh import follow_store, mesh_io, output, recipe_store
 from ..settings.settings_io import apply_dict, to_dict
+from ..settings.versioning import as_recorded
 from . import rerun
 from .session import Plan, Session
 
@@ -64,7 +65,7 @@ def replay(obj, progress=None):
     total, done = max(sum(run["steps"] for run in runs), 1), 0
     try:
         for run in runs:
-            apply_dict(settings, dict(run["settings"], output=run["output"]))
+            apply_dict(settings, dict(as_recorded(run["settings"]), output=run["output"]))
             weights = {group: recipe_store.unpack(w) for group, w in run["weights"].items()}
             session = Session(Plan(obj, weights=weights))
             events = {}

@@ -21,6 +21,7 @@ from ..settings import schema
 from ..settings.fields import Live, changes
 from ..settings.settings_io import apply_dict, to_dict
 from ..settings.validation import check_settings
+from ..settings.versioning import as_recorded
 from .session import Plan, run_calls, solver_changes
 
 
@@ -67,7 +68,7 @@ def prepare(copy, source_input=None):
         source_input = sources.read(source, run["use_modifiers"])
     notes = []
     changed = follow_store.topology(source_input.arrays) != stored["topology"]
-    applied = dict(run["settings"])
+    applied = as_recorded(run["settings"])
     applied.pop("follow_edits", None)  # the copy's own switch, not a setting of the run
     weights = {group: recipe_store.unpack(w) for group, w in run["weights"].items()}
     if changed:

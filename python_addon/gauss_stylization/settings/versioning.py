@@ -52,6 +52,14 @@ def bring_up_to_date(settings):
     settings.settings_version = VERSION
 
 
+def as_recorded(data):
+    """A kept run's settings as its recipe holds them (settings_io.to_dict when the run started), read
+    under the rules they were recorded with: a field whose default changed later is missing from a
+    recipe recorded before it existed, and gets its value from before the change (not the object's
+    value now), so that Replay and Follow Edits repeat the run bit for bit."""
+    return dict({field.name: field.before for field in CHANGED if field.name not in data}, **data)
+
+
 @bpy.app.handlers.persistent
 def _update_loaded_file(*_args):
     for obj in bpy.data.objects:

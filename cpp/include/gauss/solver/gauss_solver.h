@@ -120,14 +120,17 @@ class GaussSolver {
   // and the next global steps hold them there with contact springs (contact_springs.h).
   // Switching it on allocates the guard (std::bad_alloc or OutOfMemory like the set-up).
   void set_avoid_self_intersections(bool on);
-  // Resolution Independent (settings::resolution_independent, docs/resolution.md): each face's preference
-  // weighed by its rest area (the normal step's coupling lambda w_ij scaled by
-  // settings::reference_face_area / the face's area), and a bending term on the rotations that gives
-  // a mesh finer than the reference the bending stiffness ARAP has at the reference, for both methods.
-  // So lambda means the same at any tessellation finer than the reference. Off: the paper's method,
-  // bit for bit.
+  // Resolution Independent (settings::resolution_independent, docs/resolution.md): a bending term on the
+  // rotations that gives a mesh finer than the reference the bending stiffness ARAP has at the
+  // reference, for both methods, and the preference of a face coarser than the reference weighed by its
+  // rest area (the normal step's coupling lambda w_ij scaled by settings::reference_face_area / the
+  // face's area). So lambda means the same at any tessellation. Off: the paper's method, bit for bit.
   void set_resolution_independent(bool on);
   bool resolution_independent() const { return resolution_independent_; }
+  // settings::weigh_finer_faces: the setting's rule before 2026-12-06, which weighed every face's
+  // preference by its area, the finer ones too.
+  void set_weigh_finer_faces(bool on);
+  bool weigh_finer_faces() const { return weigh_finer_faces_; }
   // The face area (solver frame) at which Resolution Independent changes nothing; by default
   // settings::reference_face_area. Changeable to measure the choice (gauss_bench --reference-face-area);
   // throws std::invalid_argument unless positive and finite.
@@ -238,7 +241,8 @@ class GaussSolver {
     return slot_edge_weight_.empty() ? edge_weight_[topo_.face_edge[f][k]] : slot_edge_weight_[f][k];
   }
   // The factor of lambda in face f's normal step: 1, or with resolution_independent the reference
-  // area over the face's (docs/resolution.md).
+  // area over the face's where the face is coarser (with weigh_finer_faces: wherever it differs;
+  // docs/resolution.md).
   double face_coupling(int f) const;
   void update_square_prior();   // square_prior_ from square_ and the faces' styles (when on)
   // set_pins' work inside a set-up that `progress` already reports (the constructor's or set_pins').
@@ -367,6 +371,7 @@ class GaussSolver {
   VolumeKeeper volume_;                              // rest sizes of the components without a pin
   bool keep_volume_ = settings::keep_volume.default_value;
   bool resolution_independent_ = settings::resolution_independent.default_value;
+  bool weigh_finer_faces_ = settings::weigh_finer_faces.default_value;
   double reference_face_area_ = settings::reference_face_area;
   std::unique_ptr<SelfIntersectionGuard> guard_;     // while avoid_self_intersections is on
   std::vector<Eigen::Vector3d> safe_;                // #V while it is on: X before the step
