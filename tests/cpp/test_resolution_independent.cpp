@@ -97,8 +97,16 @@ TEST(WeighFinerFaces, ChangesOnlyTheFacesFinerThanTheReference) {
   EXPECT_EQ(largest_difference(run(m, true, 0.5 * smallest, 12, true), run(m, true, 0.5 * smallest, 12, false)), 0.0);
   // Every face finer: they differ.
   EXPECT_GT(largest_difference(run(m, true, 2 * largest, 12, true), run(m, true, 2 * largest, 12, false)), 1e-4);
-  // Without the setting the old rule changes nothing.
+  // Without the setting the old rule changes nothing, even switched mid-run.
   EXPECT_EQ(largest_difference(run(m, false, -1, 12, true), run(m, false, -1)), 0.0);
+  GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces());
+  for (int i = 0; i < 12; ++i) {
+    s.set_weigh_finer_faces(i % 2 == 1);
+    s.step();
+  }
+  std::vector<double> out(m.V.size());
+  s.copy_vertices(out.data());
+  EXPECT_EQ(largest_difference(out, run(m, false, -1)), 0.0);
 }
 
 }  // namespace test_resolution_independent

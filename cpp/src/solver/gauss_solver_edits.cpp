@@ -46,7 +46,7 @@ void GaussSolver::set_resolution_independent(bool on) {
 void GaussSolver::set_weigh_finer_faces(bool on) {
   if (on == weigh_finer_faces_) return;
   weigh_finer_faces_ = on;
-  iteration_.invalidate();
+  if (resolution_independent_) iteration_.invalidate();  // without it the rule changes nothing
 }
 
 void GaussSolver::set_square_flat_regions(bool on) {

@@ -241,8 +241,8 @@ class GaussSolver {
     return slot_edge_weight_.empty() ? edge_weight_[topo_.face_edge[f][k]] : slot_edge_weight_[f][k];
   }
   // The factor of lambda in face f's normal step: 1, or with resolution_independent the reference
-  // area over the face's where the face is coarser (with weigh_finer_faces: wherever it differs;
-  // docs/resolution.md).
+  // area over the face's where the face is coarser than the reference (with weigh_finer_faces: on
+  // every face; docs/resolution.md).
   double face_coupling(int f) const;
   void update_square_prior();   // square_prior_ from square_ and the faces' styles (when on)
   // set_pins' work inside a set-up that `progress` already reports (the constructor's or set_pins').
