@@ -57,6 +57,7 @@ def test_objects_saved_before_the_setting_existed_open_with_it_off(addon, tmp_pa
         for name in ("Slot", "NoSlot"):
             settings = bpy.data.objects[name].gauss_stylization
             assert settings.resolution_independent is False, (version, name)
+            assert settings.weigh_finer_faces is False, (version, name)  # the old rule only with the setting
             assert settings.settings_version == addon.settings.versioning.VERSION
         # An object made now, in that file, starts with it on.
         fresh = helpers.uv_sphere(8, 4)
@@ -107,6 +108,10 @@ def test_objects_saved_under_version_2_keep_its_rule(addon, tmp_path):
     assert addon.settings.schema.field(addon.settings.schema.OBJECT, OLD_RULE).since == versioning.VERSION == 3
     obj = _tetrahedron_suzanne()
     obj.name = "Old"
+    off = _tetrahedron_suzanne()
+    off.name = "Off"
+    off.gauss_stylization.resolution_independent = False
+    off.gauss_stylization.settings_version = 2
     assert obj.gauss_stylization.resolution_independent is True and obj.gauss_stylization.weigh_finer_faces is False
     results = {}
     for rule in (True, False):
@@ -132,17 +137,29 @@ def test_objects_saved_under_version_2_keep_its_rule(addon, tmp_path):
     run.step(15)
     assert np.array_equal(run.result, results[True])
     run.cancel()
+    # Without Resolution Independent the old rule would change nothing: it is not written out there.
+    assert bpy.data.objects["Off"].gauss_stylization.weigh_finer_faces is False
+    # The Solver panel shows the old rule where it is in effect, so that the artist can untick it.
+    field = addon.settings.schema.field(addon.settings.schema.OBJECT, OLD_RULE)
+    assert field.panel is addon.settings.fields.Panel.SOLVER and field.shown(obj.gauss_stylization)
     fresh = _tetrahedron_suzanne()
-    assert fresh.gauss_stylization.weigh_finer_faces is False
+    assert fresh.gauss_stylization.weigh_finer_faces is False and not field.shown(fresh.gauss_stylization)
 
 
 def test_a_recipe_recorded_under_version_2_replays_with_its_rule(addon):
     """Replay of a run whose recipe predates the field (no weigh_finer_faces in its settings) uses the
     rule it ran with, whatever the object says now."""
+    today = _tetrahedron_suzanne()
+    helpers.activate(today)
+    assert helpers.stylize(15) == {'FINISHED'}
+    todays_result = helpers.coords(today)
+    helpers.clear_scene()
     obj = _tetrahedron_suzanne()
+    helpers.activate(obj)
     obj.gauss_stylization.weigh_finer_faces = True  # the rule a version-2 object ran with
     assert helpers.stylize(15) == {'FINISHED'}
     kept = helpers.coords(obj)
+    assert not np.array_equal(kept, todays_result)  # so the replay below tells the rules apart
     store = addon.mesh.recipe_store
     recipe = store.load(obj.data)
     for run in recipe["runs"]:

@@ -109,4 +109,37 @@ TEST(WeighFinerFaces, ChangesOnlyTheFacesFinerThanTheReference) {
   EXPECT_EQ(largest_difference(out, run(m, false, -1)), 0.0);
 }
 
+TEST(WeighFinerFaces, SwitchedWithTheSettingOnTheGaussRunStartsAgainTheCubicRunGoesOn) {
+  const gauss::TriangleMesh m = squashed_sphere();
+  const auto steps_switching = [&](gauss::Method method, bool& unconverged_after_switch) {
+    GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces());
+    s.set_method(method);
+    s.set_resolution_independent(true);
+    s.set_reference_face_area(1.0);  // every face finer: the rules differ where the method reads them
+    for (int i = 0; i < 6; ++i) s.step();
+    s.set_weigh_finer_faces(true);
+    unconverged_after_switch = std::isinf(s.last_reldv());
+    for (int i = 0; i < 6; ++i) s.step();
+    std::vector<double> out(m.V.size());
+    s.copy_vertices(out.data());
+    return out;
+  };
+  const auto steps_plain = [&](gauss::Method method) {
+    GaussSolver s(m.V.data(), m.num_vertices(), m.F.data(), m.num_faces());
+    s.set_method(method);
+    s.set_resolution_independent(true);
+    s.set_reference_face_area(1.0);
+    for (int i = 0; i < 12; ++i) s.step();
+    std::vector<double> out(m.V.size());
+    s.copy_vertices(out.data());
+    return out;
+  };
+  bool restarted = false;
+  EXPECT_GT(largest_difference(steps_switching(gauss::Method::gauss, restarted), steps_plain(gauss::Method::gauss)), 1e-6);
+  EXPECT_TRUE(restarted);  // a settled run is not converged under the other rule until it steps
+  // The cubic method has no normal step: the rule changes nothing, bit for bit.
+  EXPECT_EQ(largest_difference(steps_switching(gauss::Method::cubic, restarted), steps_plain(gauss::Method::cubic)), 0.0);
+  EXPECT_FALSE(restarted);
+}
+
 }  // namespace test_resolution_independent

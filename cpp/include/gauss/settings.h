@@ -133,7 +133,7 @@ inline constexpr Option weigh_finer_faces{
     "With resolution_independent: weigh the preference of faces finer than the reference density by their "
     "rest area too, as that setting did before 2026-12-06 (files saved then keep their result with it). It "
     "makes a fine face's coupling up to reference/area times lam, which keeps some runs from settling "
-    "(docs/resolution.md). Without resolution_independent it changes nothing."};
+    "(docs/resolution.md). Without resolution_independent, or with the cubic method, it changes nothing."};
 
 // Off by default: the paper's method has no notion of regions (flat_regions.h).
 inline constexpr Option square_flat_regions{

@@ -178,8 +178,8 @@ double GaussSolver::face_coupling(int f) const {
   if (!resolution_independent_) return 1.0;
   // A face finer than the reference keeps lambda: its bending is what the setting tops up. A coupling
   // of reference/area times lambda there (weigh_finer_faces) moves the share by at most 0.015 where
-  // both rules settle, but keeps Tetrahedron at lambda 10 from settling on six of the corpus's meshes
-  // (docs/resolution.md).
+  // both rules settle, but kept Tetrahedron at lambda 10 from settling on six of the corpus's meshes,
+  // five of which settle without it (docs/resolution.md).
   const double floor = weigh_finer_faces_ ? kMinAreaRatio * reference_face_area_ : reference_face_area_;
   return reference_face_area_ / std::max(face_area_[f], floor);
 }

@@ -46,7 +46,8 @@ void GaussSolver::set_resolution_independent(bool on) {
 void GaussSolver::set_weigh_finer_faces(bool on) {
   if (on == weigh_finer_faces_) return;
   weigh_finer_faces_ = on;
-  if (resolution_independent_) iteration_.invalidate();  // without it the rule changes nothing
+  // Only the Gauss method's normal step reads the rule, and only with the setting on.
+  if (resolution_independent_ && method_ == Method::gauss) iteration_.invalidate();
 }
 
 void GaussSolver::set_square_flat_regions(bool on) {

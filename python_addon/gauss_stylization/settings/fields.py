@@ -74,16 +74,19 @@ class Field:
               written under an earlier one read ``before`` where they never set the field, so an old
               file keeps its result (object fields only)
     before:   the default before ``since``
+    before_where: owner -> bool; where an old object needs ``before`` (default: everywhere). Read after
+              the fields of earlier versions were brought up to date, so it may read them.
     """
 
     widget = "prop"  # plain layout.prop row
 
     def __init__(self, name, label, tooltip="", live=Live.NOTHING, panel=None, text=None, relevant=None,
-                 shown=None, update=None, since=None, before=None):
+                 shown=None, update=None, since=None, before=None, before_where=None):
         if (since is None) != (before is None):
             raise ValueError("%s: since and before go together" % name)
         self.name, self.label, self.tooltip = name, label, tooltip
         self.since, self.before = since, before
+        self.before_where = before_where or _always
         self.live, self.panel, self.text = live, panel, text
         self.relevant = relevant or _always
         self.shown = shown or self.relevant

@@ -9,7 +9,10 @@ enum numbers files hold never change.
 The rules are the schema's (schema.OBJECT): a field whose default changed names the version that
 changed it (``since``) and the default before (``before``; fields.Field). Version 0 is before the stamp;
 VERSION is the latest ``since``. Objects written under an earlier version that never set such a field
-get its ``before`` value written out, so they keep their result.
+get its ``before`` value written out, so they keep their result; a field that keeps an old rule of
+another setting (weigh_finer_faces, Resolution Independent's rule before version 3) gets it only where
+that setting is in effect (``before_where``). Recipes of kept runs hold the settings they ran with;
+a field they predate is read as ``before`` (as_recorded).
 
 A file's objects are brought up to date when it loads (load_post); objects that got settings in this
 session are stamped when the file is saved (save_pre), since they already follow today's rules. An
@@ -46,8 +49,9 @@ def bring_up_to_date(settings):
     """Settings read from a file of an earlier version -> today's, keeping what they did."""
     if settings.settings_version >= VERSION:
         return
-    for field in CHANGED:
-        if settings.settings_version < field.since and not settings.is_property_set(field.name):
+    for field in CHANGED:  # oldest first: a field's before_where reads the older fields brought up to date
+        if (settings.settings_version < field.since and not settings.is_property_set(field.name)
+                and field.before_where(settings)):
             setattr(settings, field.name, field.before)
     settings.settings_version = VERSION
 
