@@ -24,13 +24,13 @@ def test_new_objects_start_with_it_on_and_the_solver_gets_it(addon):
             run.cancel()
 
 
-def _save_as_version(addon, path, version):
+def _save_as_version(addon, path, version, field=FIELD):
     """Write the file as the add-on at settings version ``version`` wrote it: the stamp ``version`` (0:
-    none), and the setting never set, as no earlier version knew it."""
+    none), and ``field`` never set, as no earlier version knew it."""
     versioning = addon.settings.versioning
     for obj in bpy.data.objects:
         settings = obj.gauss_stylization
-        settings.property_unset(FIELD)
+        settings.property_unset(field)
         if version:
             settings.settings_version = version
         else:
@@ -111,7 +111,6 @@ def test_objects_saved_under_version_2_keep_its_rule(addon, tmp_path):
     off = _tetrahedron_suzanne()
     off.name = "Off"
     off.gauss_stylization.resolution_independent = False
-    off.gauss_stylization.settings_version = 2
     assert obj.gauss_stylization.resolution_independent is True and obj.gauss_stylization.weigh_finer_faces is False
     results = {}
     for rule in (True, False):
@@ -121,14 +120,8 @@ def test_objects_saved_under_version_2_keep_its_rule(addon, tmp_path):
         results[rule] = run.result.copy()
         run.cancel()
     assert not np.array_equal(results[True], results[False])
-    obj.gauss_stylization.property_unset(OLD_RULE)  # version 2 did not know the field
-    obj.gauss_stylization.settings_version = 2
     path = str(tmp_path / "v2.blend")
-    versioning.unregister_handlers()
-    try:
-        bpy.ops.wm.save_as_mainfile(filepath=path)
-    finally:
-        versioning.register_handlers()
+    _save_as_version(addon, path, 2, OLD_RULE)
     helpers.clear_scene()
     bpy.ops.wm.open_mainfile(filepath=path, load_ui=False)
     obj = bpy.data.objects["Old"]

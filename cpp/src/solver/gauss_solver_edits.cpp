@@ -17,7 +17,6 @@ namespace gauss {
 
 using Eigen::Vector3d;
 
-
 void GaussSolver::set_lambda(double lambda) {
   settings::lambda.check(lambda);
   // Eq. 27: lambda only scales the right-hand side, so the factor stays valid.
