@@ -1,8 +1,8 @@
 """How the share of aligned faces answers a painted Region weight: the table of
-docs/interactive.md#painting-the-strength.
+docs/interactive.md#the-paint-curve.
 
     GAUSS_BUILD_DIR=$PWD/build python3 scripts/measure_paint_response.py [--linear] [--k K] [--scales]
-        [--method gauss|cubic] [--steps N] [--lams 2 4 8] [MESH ...]
+        [--resolution-independent [--old-curve]] [--method gauss|cubic] [--steps N] [--lams 2 4 8] [MESH ...]
 
 Runs gauss_core as the add-on does for one Cube style slot whose Region carries the weights, Other
 Faces Unstyled (default meshes: Spot and the 6K bunny, ../shared/meshes; lambda 2, 4, 8; 100 steps):
@@ -14,9 +14,11 @@ Faces Unstyled (default meshes: Spot and the 6K bunny, ../shared/meshes; lambda 
   (above 2/3), and their difference.
 
 Weights become strengths through the add-on's curve (python_addon/gauss_stylization/settings/
-paint_curve.py, loaded by path); --linear gives the weights to the solver as they are (the rule
-before the curve), --k one steepness for every lambda. --scales instead prints the share for a uniform mu scale
-s (the raw response the curve is derived from).
+paint_curve.py, loaded by path), for the solver's Resolution Independent as given (default off, the
+paper's method; --old-curve: with it on, the curve objects saved under settings version 3 keep);
+--linear gives the weights to the solver as they are (the rule before the curve), --k one steepness for
+every lambda. --scales instead prints the share for a uniform mu scale s (the raw response the curve is
+derived from).
 """
 import argparse
 import importlib.util
@@ -48,17 +50,17 @@ def _curve():
     return module
 
 
-def _stylized(V, F, lam, face_strength, method, steps):
+def _stylized(V, F, lam, face_strength, method, steps, independent):
     strengths = {"cubic_lambda": lam} if method == "cubic" else {"lam": lam}
-    solver = gauss_core.Solver(V, F, method=method, **strengths)
+    solver = gauss_core.Solver(V, F, method=method, resolution_independent=independent, **strengths)
     solver.set_styles([gauss_core.Style.preset("cube")])
     solver.set_face_weights(np.asarray(face_strength, np.float32).reshape(-1, 1))
     solver.step(steps)
     return solver.vertices
 
 
-def _share(V, F, lam, face_strength, method, steps):
-    return aligned_share(_stylized(V, F, lam, face_strength, method, steps), F, CUBE)
+def _share(V, F, lam, face_strength, method, steps, independent):
+    return aligned_share(_stylized(V, F, lam, face_strength, method, steps, independent), F, CUBE)
 
 
 def _gradient(V, F):
@@ -77,24 +79,29 @@ def main():
     parser.add_argument("--k", type=float, default=None,
                         help="the curve's steepness k for every lambda (default: the add-on's, from the method and lambda)")
     parser.add_argument("--scales", action="store_true", help="share for a uniform mu scale instead")
+    parser.add_argument("--resolution-independent", action="store_true", help="the solver's Resolution Independent on")
+    parser.add_argument("--old-curve", action="store_true",
+                        help="with --resolution-independent: the curve before settings version 4 (old_paint_curve)")
     parser.add_argument("--method", default="gauss")
     parser.add_argument("--steps", type=int, default=100)
     parser.add_argument("--lams", type=float, nargs="+", default=(2.0, 4.0, 8.0),
                         help="Lambda (the cubic method: Cubic Lambda)")
     args = parser.parse_args()
     curve = _curve()
+    independent = args.resolution_independent
+    pull = curve.pull_shown(independent, args.old_curve)
 
     def steepness(lam):
         if args.linear:
             return 0.0
-        return args.k if args.k is not None else curve.steepness(args.method.upper(), lam)
+        return args.k if args.k is not None else curve.steepness(args.method.upper(), lam, pull)
     shared = os.path.join(ROOT, "..", "shared", "meshes")
     if args.scales:
         print("| mesh | lambda | " + " | ".join("s=%g" % s for s in SCALES) + " |")
     else:
-        rule = "linear" if args.linear else "k = %g" % args.k if args.k is not None else "k = ln(lambda / %g)" % (
-            curve.PULL_SHOWN)
-        print("rule: %s, method %s, %d steps" % (rule, args.method, args.steps))
+        rule = "linear" if args.linear else "k = %g" % args.k if args.k is not None else "k = ln(lambda / %g)" % pull
+        print("rule: %s, method %s, Resolution Independent %s, %d steps" % (
+            rule, args.method, "on" if independent else "off", args.steps))
         print("| mesh | lambda | " + " | ".join("w=%g" % w for w in WEIGHTS)
               + " | largest gap to the line | gradient: light third | heavy third | heavy - light |")
     print("|---" * (2 + (len(SCALES) if args.scales else len(WEIGHTS) + 4)) + "|")
@@ -103,16 +110,17 @@ def main():
         label = os.path.splitext(os.path.basename(name))[0]
         for lam in args.lams:
             if args.scales:
-                shares = [_share(V, F, lam, np.full(len(F), s), args.method, args.steps) for s in SCALES]
+                shares = [_share(V, F, lam, np.full(len(F), s), args.method, args.steps, independent)
+                          for s in SCALES]
                 print("| %s | %g | %s |" % (label, lam, " | ".join("%.3f" % x for x in shares)), flush=True)
                 continue
             k = steepness(lam)
-            shares = [_share(V, F, lam, curve.strength(np.full(len(F), w), k), args.method, args.steps)
+            shares = [_share(V, F, lam, curve.strength(np.full(len(F), w), k), args.method, args.steps, independent)
                       for w in WEIGHTS]
             line = [shares[0] + w * (shares[-1] - shares[0]) for w in WEIGHTS]
             gap = max(abs(a - b) for a, b in zip(shares, line))
             face_w = _gradient(V, F)
-            result = _stylized(V, F, lam, curve.strength(face_w, k), args.method, args.steps)
+            result = _stylized(V, F, lam, curve.strength(face_w, k), args.method, args.steps, independent)
             light = aligned_share(result, F, CUBE, face_mask=face_w < 1.0 / 3.0)
             heavy = aligned_share(result, F, CUBE, face_mask=face_w > 2.0 / 3.0)
             print("| %s | %g | %s | %.3f | %.3f | %.3f | %.3f |" % (

@@ -94,7 +94,9 @@ def run_option(option, V, F, pairs_in):
         weights = option.weights(V, F) if option.weights else None
         if weights is not None:  # through the add-on's paint curve, as a painted Region's weights go
             curve = paint_curve()
-            k = curve.steepness(option.method.upper(), keywords.get("lam", gauss_core.DEFAULTS["lam"]))
+            independent = keywords.get("resolution_independent", gauss_core.DEFAULTS["resolution_independent"])
+            k = curve.steepness(option.method.upper(), keywords.get("lam", gauss_core.DEFAULTS["lam"]),
+                                curve.pull_shown(independent))
             solver.set_face_weights(curve.scale_blend(weights, k))
         step_ms, cpu_ms, held = [], [], []
         while len(step_ms) < STEP_CAP and not solver.last_reldv < TOLERANCE:

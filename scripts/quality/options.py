@@ -70,8 +70,11 @@ OPTIONS = [
     Option("cube +independent", keywords=INDEPENDENT, tags=("independent",), plain="cube"),
     Option("tetrahedron l10 +independent", preset="tetrahedron", lam=10.0, keywords=INDEPENDENT,
            tags=("independent",), plain="tetrahedron l10"),
-    Option("cube painted 0.5", weights=uniform_weight(0.5), tags=("paint",), plain="cube"),
-    Option("cube painted 0-1", weights=gradient_weights, tags=("paint",), plain="cube"),
+    # Painted as an artist paints a new object: with Resolution Independent, against the same run unpainted.
+    Option("cube painted 0.5", weights=uniform_weight(0.5), keywords=INDEPENDENT, tags=("paint",),
+           plain="cube +independent"),
+    Option("cube painted 0-1", weights=gradient_weights, keywords=INDEPENDENT, tags=("paint",),
+           plain="cube +independent"),
     Option("cube pinned 5%", pins=lowest_vertices(0.05), plain="cube"),
     Option("sheet metal", preset="sheet_metal"),
     Option("cube +square flat", keywords=SQUARE, tags=("square",), plain="cube"),

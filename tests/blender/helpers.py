@@ -133,6 +133,51 @@ def add_group(obj, name, indices, weight=1.0):
     return group
 
 
+def save_as_version(addon, path, version, field):
+    """Write the file as the add-on at settings version ``version`` wrote it: the stamp ``version`` (0:
+    none), and ``field`` never set, as no earlier version knew it (settings/versioning.py)."""
+    versioning = addon.settings.versioning
+    for obj in bpy.data.objects:
+        settings = obj.gauss_stylization
+        settings.property_unset(field)
+        if version:
+            settings.settings_version = version
+        else:
+            settings.property_unset(versioning.STAMP)
+    versioning.unregister_handlers()
+    try:
+        bpy.ops.wm.save_as_mainfile(filepath=path)
+    finally:
+        versioning.register_handlers()
+
+
+def replays_with_the_old_rule(addon, make_object, field, steps):
+    """Asserts that Replay of a kept run whose recipe predates ``field`` (a Bool keeping an old rule,
+    settings/versioning.py) uses the rule it ran with (``field`` on), whatever the object says now, and
+    leaves the object's ``field`` as it was. ``make_object()`` makes the object, style slots and all."""
+    today = make_object()
+    activate(today)
+    assert stylize(steps) == {'FINISHED'}
+    todays_result = coords(today)
+    clear_scene()
+    obj = make_object()
+    activate(obj)
+    setattr(obj.gauss_stylization, field, True)  # the rule an older object ran with
+    assert stylize(steps) == {'FINISHED'}
+    kept = coords(obj)
+    assert not np.array_equal(kept, todays_result)  # so the replay below tells the rules apart
+    store = addon.mesh.recipe_store
+    recipe = store.load(obj.data)
+    for run in recipe["runs"]:
+        assert run["settings"].pop(field) is True  # as the older version recorded it: without the field
+    store.save(obj.data, recipe)
+    setattr(obj.gauss_stylization, field, False)  # today's rule on the object
+    activate(obj)
+    assert bpy.ops.object.gauss_replay() == {'FINISHED'}
+    assert np.array_equal(coords(obj), kept)
+    assert getattr(obj.gauss_stylization, field) is False  # the artist's setting is left as it was
+
+
 def stylize(iterations, **settings):
     """Run the operator as a script would (execute, no invoke) after setting object ``settings``."""
     settings_io.apply_dict(bpy.context.active_object.gauss_stylization, settings)

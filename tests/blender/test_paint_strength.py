@@ -51,17 +51,20 @@ def test_a_region_of_weight_one_is_the_whole_mesh_bit_for_bit(addon):
 
 
 def test_a_weight_of_a_half_is_the_curves_share_of_the_mu(addon):
-    # The paint curve (settings/paint_curve.py) turns a painted 0.5 into a mu scale of about 0.08 with
-    # the Gauss method at Lambda 4, and leaves it 0.5 with the Cubic method.
+    # The paint curve (settings/paint_curve.py) turns a painted 0.5 into a mu scale of about 0.1 with the
+    # Gauss method at Lambda 4 and Resolution Independent (0.07 without it, and with the curve an object
+    # saved under settings version 3 keeps), and leaves it 0.5 with the Cubic method.
     obj, _ = _painted_sphere(lambda co: np.full(len(co), 0.5))
     settings = obj.gauss_stylization
     slot = settings.styles[0]
     curve = addon.settings.paint_curve
     settings.lam = 4.0
-    for method, expected in (('GAUSS', (0.05, 0.1)), ('CUBIC', (0.5, 0.5))):
-        settings.method = method
-        scale = float(curve.strength([0.5], curve.steepness(method, settings.lam))[0])
-        assert expected[0] <= scale <= expected[1]
+    cases = (('GAUSS', True, False, (0.09, 0.11)), ('GAUSS', False, False, (0.06, 0.08)),
+             ('GAUSS', True, True, (0.06, 0.08)), ('CUBIC', True, False, (0.5, 0.5)))
+    for method, independent, old_curve, expected in cases:
+        settings.method, settings.resolution_independent, settings.old_paint_curve = method, independent, old_curve
+        scale = float(curve.strength([0.5], curve.steepness_of(settings))[0])
+        assert expected[0] <= scale <= expected[1], (method, independent, old_curve, scale)
         slot.vertex_group, slot.mu = "Paint", 1.0
         half = _result(addon, obj, 8)
         slot.vertex_group, slot.mu = "", scale
@@ -81,7 +84,14 @@ def test_the_curve_follows_lambda_mid_run(addon):
         assert run.plan.paint_steepness > before
         curve = addon.settings.paint_curve
         np.testing.assert_allclose(run.plan.regions_for(obj.gauss_stylization)[0][:, 0],
-                                   curve.strength([0.5], curve.steepness('GAUSS', 8.0))[0], rtol=1e-6)
+                                   curve.strength([0.5], curve.steepness('GAUSS', 8.0, curve.PULL_SHOWN_INDEPENDENT))[0],
+                                   rtol=1e-6)
+        # So does a change of Resolution Independent, which moves where the style starts to show.
+        obj.gauss_stylization.resolution_independent = False
+        assert run.sync_settings() is None
+        np.testing.assert_allclose(run.plan.regions_for(obj.gauss_stylization)[0][:, 0],
+                                   curve.strength([0.5], curve.steepness('GAUSS', 8.0, curve.PULL_SHOWN))[0],
+                                   rtol=1e-6)
     finally:
         run.cancel()
 
@@ -206,3 +216,46 @@ def test_regions_of_weight_one_take_exactly_the_faces_they_took_before(addon, un
     one_hot[old >= 0, old[old >= 0]] = 1.0
     assert overlap.any() and (~overlap).sum() > len(overlap) // 2
     np.testing.assert_array_equal(weights[~overlap], one_hot[~overlap])
+
+
+OLD_CURVE = "old_paint_curve"
+
+
+def _half_painted(name, independent=True):
+    obj, _ = _painted_sphere(lambda co: np.full(len(co), 0.5))
+    obj.name = name
+    obj.gauss_stylization.resolution_independent = independent
+    return obj
+
+
+def test_objects_saved_under_version_3_keep_its_curve(addon, tmp_path):
+    """A file saved at settings version 3 (Resolution Independent on, the paint curve's onset then the
+    same as without it) opens with that curve and stylizes as it did; new objects get today's."""
+    versioning = addon.settings.versioning
+    field = addon.settings.schema.field(addon.settings.schema.OBJECT, OLD_CURVE)
+    assert field.since == versioning.VERSION == 4
+    obj, off = _half_painted("Old"), _half_painted("Off", independent=False)
+    assert obj.gauss_stylization.old_paint_curve is False
+    results = {}
+    for curve in (True, False):
+        obj.gauss_stylization.old_paint_curve = curve
+        results[curve] = _result(addon, obj, 8)
+    assert not np.array_equal(results[True], results[False])
+    helpers.save_as_version(addon, str(tmp_path / "v3.blend"), 3, OLD_CURVE)
+    helpers.clear_scene()
+    bpy.ops.wm.open_mainfile(filepath=str(tmp_path / "v3.blend"), load_ui=False)
+    obj = bpy.data.objects["Old"]
+    assert obj.gauss_stylization.old_paint_curve is True
+    np.testing.assert_array_equal(_result(addon, obj, 8), results[True])
+    # Without Resolution Independent the curve did not change: nothing is written out there.
+    assert bpy.data.objects["Off"].gauss_stylization.old_paint_curve is False
+    # The Styles panel shows the old curve where it is in effect, so that the artist can untick it.
+    assert field.panel is addon.settings.fields.Panel.STYLES and field.shown(obj.gauss_stylization)
+    fresh = _half_painted("New")
+    assert fresh.gauss_stylization.old_paint_curve is False and not field.shown(fresh.gauss_stylization)
+
+
+def test_a_recipe_recorded_under_version_3_replays_with_its_curve(addon):
+    """Replay of a run whose recipe predates the field uses the curve it ran with, whatever the object
+    says now."""
+    helpers.replays_with_the_old_rule(addon, lambda: _half_painted("Old"), OLD_CURVE, 8)

@@ -24,24 +24,6 @@ def test_new_objects_start_with_it_on_and_the_solver_gets_it(addon):
             run.cancel()
 
 
-def _save_as_version(addon, path, version, field=FIELD):
-    """Write the file as the add-on at settings version ``version`` wrote it: the stamp ``version`` (0:
-    none), and ``field`` never set, as no earlier version knew it."""
-    versioning = addon.settings.versioning
-    for obj in bpy.data.objects:
-        settings = obj.gauss_stylization
-        settings.property_unset(field)
-        if version:
-            settings.settings_version = version
-        else:
-            settings.property_unset(versioning.STAMP)
-    versioning.unregister_handlers()
-    try:
-        bpy.ops.wm.save_as_mainfile(filepath=path)
-    finally:
-        versioning.register_handlers()
-
-
 def test_objects_saved_before_the_setting_existed_open_with_it_off(addon, tmp_path):
     assert addon.settings.schema.field(addon.settings.schema.OBJECT, FIELD).since == 2
     for version in (0, 1):
@@ -51,7 +33,7 @@ def test_objects_saved_before_the_setting_existed_open_with_it_off(addon, tmp_pa
         helpers.add_slot(with_slot, 'CUBE')
         without.gauss_stylization.lam = 3.0  # settings, but no slot yet: Stylize adds one
         path = str(tmp_path / ("v%d.blend" % version))
-        _save_as_version(addon, path, version)
+        helpers.save_as_version(addon, path, version, FIELD)
         helpers.clear_scene()
         bpy.ops.wm.open_mainfile(filepath=path, load_ui=False)
         for name in ("Slot", "NoSlot"):
@@ -103,9 +85,8 @@ def _tetrahedron_suzanne():
 def test_objects_saved_under_version_2_keep_its_rule(addon, tmp_path):
     """A file saved at settings version 2 (Resolution Independent on, its rule then weighing every face)
     opens with that rule and stylizes as it did; new objects get today's."""
-    versioning = addon.settings.versioning
     assert addon.native.facts().defaults[OLD_RULE] is False
-    assert addon.settings.schema.field(addon.settings.schema.OBJECT, OLD_RULE).since == versioning.VERSION == 3
+    assert addon.settings.schema.field(addon.settings.schema.OBJECT, OLD_RULE).since == 3
     obj = _tetrahedron_suzanne()
     obj.name = "Old"
     off = _tetrahedron_suzanne()
@@ -121,7 +102,7 @@ def test_objects_saved_under_version_2_keep_its_rule(addon, tmp_path):
         run.cancel()
     assert not np.array_equal(results[True], results[False])
     path = str(tmp_path / "v2.blend")
-    _save_as_version(addon, path, 2, OLD_RULE)
+    helpers.save_as_version(addon, path, 2, OLD_RULE)
     helpers.clear_scene()
     bpy.ops.wm.open_mainfile(filepath=path, load_ui=False)
     obj = bpy.data.objects["Old"]
@@ -142,24 +123,4 @@ def test_objects_saved_under_version_2_keep_its_rule(addon, tmp_path):
 def test_a_recipe_recorded_under_version_2_replays_with_its_rule(addon):
     """Replay of a run whose recipe predates the field (no weigh_finer_faces in its settings) uses the
     rule it ran with, whatever the object says now."""
-    today = _tetrahedron_suzanne()
-    helpers.activate(today)
-    assert helpers.stylize(15) == {'FINISHED'}
-    todays_result = helpers.coords(today)
-    helpers.clear_scene()
-    obj = _tetrahedron_suzanne()
-    helpers.activate(obj)
-    obj.gauss_stylization.weigh_finer_faces = True  # the rule a version-2 object ran with
-    assert helpers.stylize(15) == {'FINISHED'}
-    kept = helpers.coords(obj)
-    assert not np.array_equal(kept, todays_result)  # so the replay below tells the rules apart
-    store = addon.mesh.recipe_store
-    recipe = store.load(obj.data)
-    for run in recipe["runs"]:
-        assert run["settings"].pop(OLD_RULE) is True  # as version 2 recorded it: without the field
-    store.save(obj.data, recipe)
-    obj.gauss_stylization.weigh_finer_faces = False  # today's rule on the object
-    helpers.activate(obj)
-    assert bpy.ops.object.gauss_replay() == {'FINISHED'}
-    assert np.array_equal(helpers.coords(obj), kept)
-    assert obj.gauss_stylization.weigh_finer_faces is False  # the artist's setting is left as it was
+    helpers.replays_with_the_old_rule(addon, _tetrahedron_suzanne, OLD_RULE, 15)

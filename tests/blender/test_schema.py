@@ -99,6 +99,8 @@ LIVE_CHANGES = {
     ("slot", "gauss_map"): (dict(preset='GAUSS_MAP', gauss_map=[(0, 0, 1, 0.5), (1, 0, 0, 0.5)]), {},
                             [(0, 1, 0, 1.0)]),
     ("object", "uncovered"): (dict(vertex_group="Top"), {}, 'FIRST_SLOT'),
+    # The faces along Top's rim weigh 1/3 or 2/3 (their corners' mean), where the two curves differ.
+    ("object", "old_paint_curve"): (dict(vertex_group="Top"), dict(uncovered='UNSTYLED'), True),
     ("object", "pin_group"): ({}, {}, "Pins"),
     ("object", "lam"): ({}, {}, 8.0),
     ("object", "method"): ({}, {}, 'CUBIC'),

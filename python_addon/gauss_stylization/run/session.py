@@ -132,7 +132,7 @@ class Plan:
         takes a vertex's strength from its faces, see styles.face_weights)."""
         weights = self.weights if weights is None else weights
         groups = [slot.vertex_group for slot in settings.styles]
-        self.paint_steepness = paint_curve.steepness(settings.method, settings.lam)
+        self.paint_steepness = paint_curve.steepness_of(settings)
         return styles.face_weights(self.arrays, weights, groups, settings.uncovered, self.paint_steepness), None
 
     @property
@@ -184,8 +184,8 @@ def solver_changes(plan, obj, settings, applied, changed, weights):
     if Live.STYLES in changed:
         new_styles = styles.make_styles(plan.gauss_core, settings.styles)
     if Live.REGIONS in changed or (Live.SETTER in changed and plan.paint_steepness !=
-                                   paint_curve.steepness(settings.method, settings.lam)):
-        faces = plan.regions_for(settings, weights)  # the paint curve follows Method and Lambda
+                                   paint_curve.steepness_of(settings)):
+        faces = plan.regions_for(settings, weights)  # the paint curve follows Method, Lambda, Resolution Independent
     if Live.PINS in changed:
         pins = styles.pinned_vertices(weights, settings.pin_group)
         check_pins(obj, pins, plan.arrays.triangles)

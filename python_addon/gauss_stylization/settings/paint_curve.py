@@ -5,28 +5,45 @@ scale) roughly as the logarithm of that pull: nothing shows below a small pull, 
 small part of the full pull already gives most of the effect. So a face's total painted weight t
 in [0, 1] scales its styles' mu by
 
-    strength(t) = (exp(k t) - 1) / (exp(k) - 1),   k = ln(lambda / PULL_SHOWN)
+    strength(t) = (exp(k t) - 1) / (exp(k) - 1),   k = ln(lambda / pull_shown)
 
 (exactly 0 at t = 0 and exactly 1 at t = 1): from t = 0 to 1 the pull climbs log-uniformly from
-about PULL_SHOWN to the full lambda. The Cubic method's response to its strength is already close
-to linear, so it takes the weights as they are (k = 0). How the constant was measured and what the
-curve gives: docs/interactive.md#painting-the-strength. numpy only:
-scripts/measure_paint_response.py loads it by path.
+about the pull where the style starts to show to the full lambda. That onset is higher with
+Resolution Independent, which stiffens the bending of meshes finer than its reference density (Spot,
+the bunnies). The Cubic method's response to its strength is already close to linear, so it takes the
+weights as they are (k = 0). How the constants were measured and what the curve gives:
+docs/interactive.md#the-paint-curve. numpy only: scripts/measure_paint_response.py and the quality
+matrix load it by path.
 """
 
 import math
 
 import numpy as np
 
-PULL_SHOWN = 0.025  # lambda * mu scale where a Gauss style starts to show (docs/interactive.md#painting-the-strength)
+# lambda * mu scale where a Gauss style starts to show (docs/interactive.md#the-paint-curve): the paper's
+# method, and with Resolution Independent (unless the object keeps the curve it was saved with, old_paint_curve).
+PULL_SHOWN = 0.025
+PULL_SHOWN_INDEPENDENT = 0.05
 _LINEAR = 1e-6      # below this steepness the curve is the straight line it tends to
 
 
-def steepness(method, lam):
-    """k of the curve for a method ('GAUSS', 'CUBIC': the enum identifiers) at Lambda ``lam``."""
-    if method != 'GAUSS' or not lam > PULL_SHOWN:
+def pull_shown(resolution_independent, old_paint_curve=False):
+    """Where the style starts to show, for an object's Resolution Independent and old_paint_curve."""
+    return PULL_SHOWN_INDEPENDENT if resolution_independent and not old_paint_curve else PULL_SHOWN
+
+
+def steepness(method, lam, pull=PULL_SHOWN):
+    """k of the curve for a method ('GAUSS', 'CUBIC': the enum identifiers) at Lambda ``lam``, the
+    style starting to show at the pull ``pull`` (pull_shown)."""
+    if method != 'GAUSS' or not lam > pull:
         return 0.0
-    return math.log(lam / PULL_SHOWN)
+    return math.log(lam / pull)
+
+
+def steepness_of(settings):
+    """k of the curve for an object's settings (GaussSettings, or anything with its attributes)."""
+    return steepness(settings.method, settings.lam,
+                     pull_shown(settings.resolution_independent, settings.old_paint_curve))
 
 
 def strength(total, k):

@@ -66,7 +66,7 @@ def _face_weights(obj, entry):
     session = runs.session_of(obj)
     settings = obj.gauss_stylization
     groups = tuple(slot.vertex_group for slot in settings.styles)
-    steepness = paint_curve.steepness(settings.method, settings.lam)
+    steepness = paint_curve.steepness_of(settings)
     mesh = obj.data
     source = (("run", id(session), id(session.weights)) if session is not None else
               ("mesh", mesh.as_pointer(), len(mesh.vertices), len(mesh.polygons), entry.get("stamp")))
