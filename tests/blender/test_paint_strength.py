@@ -83,15 +83,17 @@ def test_the_curve_follows_lambda_mid_run(addon):
         assert run.sync_settings() is None
         assert run.plan.paint_steepness > before
         curve = addon.settings.paint_curve
+        eight = curve.steepness('GAUSS', 8.0, curve.PULL_SHOWN_INDEPENDENT)
         np.testing.assert_allclose(run.plan.regions_for(obj.gauss_stylization)[0][:, 0],
-                                   curve.strength([0.5], curve.steepness('GAUSS', 8.0, curve.PULL_SHOWN_INDEPENDENT))[0],
-                                   rtol=1e-6)
-        # So does a change of Resolution Independent, which moves where the style starts to show.
-        obj.gauss_stylization.resolution_independent = False
-        assert run.sync_settings() is None
-        np.testing.assert_allclose(run.plan.regions_for(obj.gauss_stylization)[0][:, 0],
-                                   curve.strength([0.5], curve.steepness('GAUSS', 8.0, curve.PULL_SHOWN))[0],
-                                   rtol=1e-6)
+                                   curve.strength([0.5], eight)[0], rtol=1e-6)
+        # So do a change of Resolution Independent, which moves where the style starts to show, and of the
+        # old curve's switch: the run's weights (made when the change reached it) follow each.
+        for independent, old_curve, pull in ((False, False, curve.PULL_SHOWN), (True, True, curve.PULL_SHOWN),
+                                             (True, False, curve.PULL_SHOWN_INDEPENDENT)):
+            obj.gauss_stylization.resolution_independent = independent
+            obj.gauss_stylization.old_paint_curve = old_curve
+            assert run.sync_settings() is None
+            assert run.plan.paint_steepness == curve.steepness('GAUSS', 8.0, pull), (independent, old_curve)
     finally:
         run.cancel()
 
@@ -110,7 +112,8 @@ def test_weights_are_read_from_the_group_and_zero_leaves_faces_unstyled(addon):
         painted = arrays.polygon_average((expected > 0).astype(float))
         polygon_mean = np.where(painted > 0.5, arrays.polygon_average(expected) / np.maximum(painted, 1e-30),
                                 0.0)[arrays.tri_polygon]
-        np.testing.assert_allclose(face_w[:, 0], addon.settings.paint_curve.strength(polygon_mean, plan.paint_steepness),
+        np.testing.assert_allclose(face_w[:, 0],
+                                   addon.settings.paint_curve.strength(polygon_mean, plan.paint_steepness),
                                    atol=1e-6)
         below = polygon_mean == 0
         assert below.sum() > len(below) // 3 and np.all(face_w[below] == 0)
@@ -234,7 +237,8 @@ def test_objects_saved_under_version_3_keep_its_curve(addon, tmp_path):
     versioning = addon.settings.versioning
     field = addon.settings.schema.field(addon.settings.schema.OBJECT, OLD_CURVE)
     assert field.since == versioning.VERSION == 4
-    obj, off = _half_painted("Old"), _half_painted("Off", independent=False)
+    obj = _half_painted("Old")
+    _half_painted("Off", independent=False)
     assert obj.gauss_stylization.old_paint_curve is False
     results = {}
     for curve in (True, False):
@@ -259,3 +263,25 @@ def test_a_recipe_recorded_under_version_3_replays_with_its_curve(addon):
     """Replay of a run whose recipe predates the field uses the curve it ran with, whatever the object
     says now."""
     helpers.replays_with_the_old_rule(addon, lambda: _half_painted("Old"), OLD_CURVE, 8)
+
+
+@pytest.mark.parametrize("method, independent", [('CUBIC', True), ('GAUSS', False)])
+def test_the_old_curve_switched_where_it_changes_nothing_leaves_the_run_as_it_was(addon, method, independent):
+    # The cubic method takes the weights as they are, and without Resolution Independent both curves are
+    # the same: a switch mid-run must not give the solver the weights again (which restarts its momentum).
+    obj = _half_painted("Run", independent=independent)  # one object: two built alike may differ in their last bits
+    obj.gauss_stylization.method = method
+    results = []
+    for switch in (False, True):
+        obj.gauss_stylization.old_paint_curve = False
+        run = _session(addon, obj)
+        try:
+            run.step(3)
+            if switch:
+                obj.gauss_stylization.old_paint_curve = True
+                assert run.sync_settings() is None
+            run.step(3)
+            results.append(helpers.coords(obj))
+        finally:
+            run.cancel()
+    np.testing.assert_array_equal(results[0], results[1])

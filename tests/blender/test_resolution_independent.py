@@ -33,13 +33,14 @@ def test_objects_saved_before_the_setting_existed_open_with_it_off(addon, tmp_pa
         helpers.add_slot(with_slot, 'CUBE')
         without.gauss_stylization.lam = 3.0  # settings, but no slot yet: Stylize adds one
         path = str(tmp_path / ("v%d.blend" % version))
-        helpers.save_as_version(addon, path, version, FIELD)
+        helpers.save_as_version(addon, path, version, FIELD, OLD_RULE, "old_paint_curve")
         helpers.clear_scene()
         bpy.ops.wm.open_mainfile(filepath=path, load_ui=False)
         for name in ("Slot", "NoSlot"):
             settings = bpy.data.objects[name].gauss_stylization
             assert settings.resolution_independent is False, (version, name)
             assert settings.weigh_finer_faces is False, (version, name)  # the old rule only with the setting
+            assert settings.old_paint_curve is False, (version, name)  # so the old paint curve
             assert settings.settings_version == addon.settings.versioning.VERSION
         # An object made now, in that file, starts with it on.
         fresh = helpers.uv_sphere(8, 4)
@@ -102,17 +103,19 @@ def test_objects_saved_under_version_2_keep_its_rule(addon, tmp_path):
         run.cancel()
     assert not np.array_equal(results[True], results[False])
     path = str(tmp_path / "v2.blend")
-    helpers.save_as_version(addon, path, 2, OLD_RULE)
+    helpers.save_as_version(addon, path, 2, OLD_RULE, "old_paint_curve")
     helpers.clear_scene()
     bpy.ops.wm.open_mainfile(filepath=path, load_ui=False)
     obj = bpy.data.objects["Old"]
     assert obj.gauss_stylization.weigh_finer_faces is True
+    assert obj.gauss_stylization.old_paint_curve is True  # version 2 painted as version 3 did
     run = addon.run.session.Session(obj)
     run.step(15)
     assert np.array_equal(run.result, results[True])
     run.cancel()
-    # Without Resolution Independent the old rule would change nothing: it is not written out there.
+    # Without Resolution Independent the old rules would change nothing: they are not written out there.
     assert bpy.data.objects["Off"].gauss_stylization.weigh_finer_faces is False
+    assert bpy.data.objects["Off"].gauss_stylization.old_paint_curve is False
     # The Solver panel shows the old rule where it is in effect, so that the artist can untick it.
     field = addon.settings.schema.field(addon.settings.schema.OBJECT, OLD_RULE)
     assert field.panel is addon.settings.fields.Panel.SOLVER and field.shown(obj.gauss_stylization)

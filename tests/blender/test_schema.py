@@ -99,8 +99,8 @@ LIVE_CHANGES = {
     ("slot", "gauss_map"): (dict(preset='GAUSS_MAP', gauss_map=[(0, 0, 1, 0.5), (1, 0, 0, 0.5)]), {},
                             [(0, 1, 0, 1.0)]),
     ("object", "uncovered"): (dict(vertex_group="Top"), {}, 'FIRST_SLOT'),
-    # The faces along Top's rim weigh 1/3 or 2/3 (their corners' mean), where the two curves differ.
-    ("object", "old_paint_curve"): (dict(vertex_group="Top"), dict(uncovered='UNSTYLED'), True),
+    # A Region of weight 0.5 (LIVE_MESHES), where the two curves differ (at 0 and 1 they agree).
+    ("object", "old_paint_curve"): (dict(vertex_group="Half"), dict(uncovered='UNSTYLED'), True),
     ("object", "pin_group"): ({}, {}, "Pins"),
     ("object", "lam"): ({}, {}, 8.0),
     ("object", "method"): ({}, {}, 'CUBIC'),
@@ -114,8 +114,15 @@ LIVE_CHANGES = {
     ("object", "square_flat_regions"): ({}, {}, True),  # on the mesh of LIVE_MESHES
 }
 # The mesh a live change is tried on where Suzanne would not show it (default: helpers.suzanne(levels=1)).
+def _half_painted_suzanne():
+    obj = helpers.suzanne(levels=1)
+    helpers.add_group(obj, "Half", range(len(obj.data.vertices)), weight=0.5)
+    return obj
+
+
 LIVE_MESHES = {
     ("object", "square_flat_regions"): helpers.capped_cylinder,  # Suzanne has no large flat region
+    ("object", "old_paint_curve"): _half_painted_suzanne,
 }
 # Live settings that change what the solver says about the shape, not the shape: the value changed to.
 LIVE_READOUTS = {

@@ -183,9 +183,10 @@ def solver_changes(plan, obj, settings, applied, changed, weights):
     new_styles = faces = pins = None
     if Live.STYLES in changed:
         new_styles = styles.make_styles(plan.gauss_core, settings.styles)
-    if Live.REGIONS in changed or (Live.SETTER in changed and plan.paint_steepness !=
-                                   paint_curve.steepness_of(settings)):
-        faces = plan.regions_for(settings, weights)  # the paint curve follows Method, Lambda, Resolution Independent
+    if Live.REGIONS in changed or ((Live.SETTER in changed or Live.CURVE in changed) and
+                                   plan.paint_steepness != paint_curve.steepness_of(settings)):
+        # The paint curve follows Method, Lambda, Resolution Independent and old_paint_curve.
+        faces = plan.regions_for(settings, weights)
     if Live.PINS in changed:
         pins = styles.pinned_vertices(weights, settings.pin_group)
         check_pins(obj, pins, plan.arrays.triangles)

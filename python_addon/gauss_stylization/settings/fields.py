@@ -24,6 +24,7 @@ class Live(enum.Enum):
     NOTHING = "nothing"             # the running solver does not read it (names, UI state, the next run)
     STYLES = "rebuild styles"       # new gauss_core.Style objects (set_styles); no re-factorization
     REGIONS = "reassign regions"    # new face and vertex weights per style (set_face_weights); no re-factorization
+    CURVE = "paint curve"           # REGIONS where the paint curve's steepness changed (paint_curve.steepness_of)
     PINS = "re-factor"              # set_pins(): the only change that re-factors the system
     SETTER = "solver setter"        # solver.<name> = value; also the Solver() keyword of that name
 

@@ -277,11 +277,11 @@ OBJECT = (
     # The paint curve with Resolution Independent before settings version 4, which objects saved under it with
     # the setting on keep (settings/paint_curve.py, settings/versioning.py). Shown only where it is on.
     Bool("old_paint_curve", "Paint Curve (Old)", "How painted Region weights became strength with Resolution "
-         "Independent up to settings version 3 (2026-12-06), which this object was saved with: weights below 1 stylized less than "
-         "their share. Untick for today's curve, with which a painted weight acts about in proportion "
-         "(docs/interactive.md, The paint curve)", default=False, since=4, before=True,
-         before_where=lambda s: s.resolution_independent, live=Live.REGIONS, panel=Panel.STYLES,
-         shown=lambda s: s.resolution_independent and s.old_paint_curve),
+         "Independent up to settings version 3 (2026-12-06), which this object was saved with: weights below 1 "
+         "stylized less than their share. Untick for today's curve, with which a painted weight acts about in "
+         "proportion (docs/interactive.md, The paint curve)", default=False, since=4, before=True,
+         before_where=lambda s: s.resolution_independent, live=Live.CURVE, panel=Panel.STYLES,
+         shown=lambda s: s.resolution_independent and s.old_paint_curve and not is_cubic(s)),
     Int("bake_steps", "Bake Steps", "Solver steps per frame of an animation bake (with Warm Start the "
         "first frame runs Script Steps, the others continue from the previous frame)",
         default=10, hard=(1, 100000), soft=(1, 200), panel=Panel.BAKE),

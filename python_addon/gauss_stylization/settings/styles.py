@@ -121,8 +121,9 @@ def face_weights(arrays, group_weights, slot_groups, uncovered, steepness):
     """(#triangles, #slots) float32: each solver triangle's weight for each slot (Solver.set_face_weights).
 
     A slot's weight on a polygon is its Region's strength there (region_strength; where no slot fills
-    the rest, through the paint curve of ``steepness``, paint_curve.steepness), which scales the slot's mu: painting a
-    Region in Weight Paint mode paints its strength, 0 leaves the polygon to the other slots.
+    the rest, through the paint curve of ``steepness``, paint_curve.steepness_of), which scales the
+    slot's mu: painting a Region in Weight Paint mode paints its strength, 0 leaves the polygon to the
+    other slots.
     Overlapping Regions blend: the polygon's preference is the weight-scaled sum of its slots'. A
     slot without a Region (or, for Other Faces = First Style, the first slot) takes what the Regions
     leave (see _filler). Triangles inherit their polygon's weights; the cubic method takes each
