@@ -32,9 +32,10 @@ def pull_shown(resolution_independent, old_paint_curve=False):
     return PULL_SHOWN_INDEPENDENT if resolution_independent and not old_paint_curve else PULL_SHOWN
 
 
-def steepness(method, lam, pull=PULL_SHOWN):
+def steepness(method, lam, pull):
     """k of the curve for a method ('GAUSS', 'CUBIC': the enum identifiers) at Lambda ``lam``, the
-    style starting to show at the pull ``pull`` (pull_shown)."""
+    style starting to show at the pull ``pull`` (pull_shown: no default, since it depends on the
+    object's Resolution Independent; the add-on calls steepness_of)."""
     if method != 'GAUSS' or not lam > pull:
         return 0.0
     return math.log(lam / pull)
