@@ -57,16 +57,13 @@ TOLERANCE = 1e-3  # --until-converged
 
 def _stylized(V, F, lam, face_strength, method, steps, independent, until_converged=False):
     strengths = {"cubic_lambda": lam} if method == "cubic" else {"lam": lam}
-    solver = gauss_core.Solver(V, F, method=method, resolution_independent=independent, tolerance=TOLERANCE,
-                               **strengths)
+    solver = gauss_core.Solver(V, F, method=method, resolution_independent=independent, **strengths)
     solver.set_styles([gauss_core.Style.preset("cube")])
     solver.set_face_weights(np.asarray(face_strength, np.float32).reshape(-1, 1))
-    if not until_converged:
+    if until_converged:
+        solver.step_until(TOLERANCE, steps)
+    else:
         solver.step(steps)
-    for _ in range(steps if until_converged else 0):
-        if solver.last_reldv < TOLERANCE:
-            break
-        solver.step()
     return solver.vertices
 
 
