@@ -255,6 +255,9 @@ def test_objects_saved_under_version_3_keep_its_curve(addon, tmp_path):
     assert bpy.data.objects["Off"].gauss_stylization.old_paint_curve is False
     # The Styles panel shows the old curve where it is in effect, so that the artist can untick it.
     assert field.panel is addon.settings.fields.Panel.STYLES and field.shown(obj.gauss_stylization)
+    # The cubic method does not read it: the row is not shown there.
+    obj.gauss_stylization.method = addon.settings.schema.CUBIC
+    assert not field.shown(obj.gauss_stylization)
     fresh = _half_painted("New")
     assert fresh.gauss_stylization.old_paint_curve is False and not field.shown(fresh.gauss_stylization)
 

@@ -119,6 +119,9 @@ def test_objects_saved_under_version_2_keep_its_rule(addon, tmp_path):
     # The Solver panel shows the old rule where it is in effect, so that the artist can untick it.
     field = addon.settings.schema.field(addon.settings.schema.OBJECT, OLD_RULE)
     assert field.panel is addon.settings.fields.Panel.SOLVER and field.shown(obj.gauss_stylization)
+    # The cubic method does not read it: the row is not shown there.
+    obj.gauss_stylization.method = addon.settings.schema.CUBIC
+    assert not field.shown(obj.gauss_stylization)
     fresh = _tetrahedron_suzanne()
     assert fresh.gauss_stylization.weigh_finer_faces is False and not field.shown(fresh.gauss_stylization)
 

@@ -241,12 +241,14 @@ OBJECT = (
          "method, where a finer mesh is stylized more strongly", new_objects=True, since=2, live=Live.SETTER,
          panel=Panel.SOLVER),
     # Resolution Independent's rule before settings version 3, which objects saved under it with the setting
-    # on keep (settings/versioning.py). Shown only where it is on, so the artist sees it and can untick it.
+    # on keep (settings/versioning.py). Shown only where it is on and acts (the Gauss method's normal step
+    # reads it; the cubic method does not), so the artist sees it and can untick it.
     Bool("weigh_finer_faces", "Weigh Finer Faces (Old)", "Resolution Independent as it was before "
          "2026-12-06, which this object was saved with: it also weighs the style of faces finer than the "
          "reference density by their area. Untick for today's rule, with which more runs settle "
          "(docs/resolution.md)", since=3, before=True, before_where=lambda s: s.resolution_independent,
-         live=Live.SETTER, panel=Panel.SOLVER, shown=lambda s: s.resolution_independent and s.weigh_finer_faces),
+         live=Live.SETTER, panel=Panel.SOLVER,
+         shown=lambda s: s.resolution_independent and s.weigh_finer_faces and not is_cubic(s)),
     Bool("square_flat_regions", "Square Flat Regions", "Give large flat regions (a cap, a lid, a table top) "
          "straight, square outlines instead of round ones: the faces around each turn towards the axes of its "
          "outline, with either method (docs/styles.md, Square Flat Regions)", live=Live.SETTER,
