@@ -2,7 +2,8 @@
 list with the settings of a saved preset, one output per input.
 
 A preset is the JSON settings_io.to_json writes for an object (or any part of it: what it leaves
-out keeps the file's or the default value). An .obj is imported into an empty file, stylized into
+out keeps the file's or the default value); one written whole by an earlier version is read as it was
+written (versioning.as_saved). An .obj is imported into an empty file, stylized into
 its own mesh and exported as '<name>_gauss.obj'; a .blend is opened, its meshes (or the one named)
 stylized with the preset as its Output says, and saved as '<name>_gauss.blend'. A file that cannot
 be read or stylized is reported and skipped; the batch goes on with the next.
@@ -19,6 +20,7 @@ from ..run.session import ensure_style_slot
 from ..run.targets import stylize_problem
 from ..settings import schema
 from ..settings.settings_io import apply_dict
+from ..settings.versioning import as_saved
 from .farm import mesh_object, say
 
 SUFFIX = "_gauss"
@@ -38,7 +40,7 @@ def read_preset(path):
     unknown = sorted(set(preset) - {field.name for field in schema.OBJECT})
     if unknown:
         raise SettingsError("The preset %s has unknown settings: %s" % (path, ", ".join(unknown)))
-    return preset
+    return as_saved(preset)  # a whole preset saved by an earlier version gives what it gave then
 
 
 def _open_obj(path):

@@ -26,6 +26,7 @@ from ..settings import paint_curve, schema, styles
 from ..settings.fields import Live, changes
 from ..settings.settings_io import add_slot, apply_dict, to_dict
 from ..settings.validation import check_coordinates, check_object, check_pins, check_settings
+from ..settings.versioning import bring_stamped_up_to_date
 from .proxy_run import ProxyMap, proxy_size
 from .proxy_stepper import ProxyStepper
 from .solver_setup import PinsSetup
@@ -84,6 +85,7 @@ class Plan:
         self.gauss_core = native.core()
         check_object(obj)
         settings = obj.gauss_stylization
+        bring_stamped_up_to_date(settings)  # an object appended from an older version's file
         self.source = source if source is not None else sources.read(obj, settings.use_modifiers)
         try:
             self._read(obj, settings, target)

@@ -14,7 +14,7 @@ import json
 
 from . import schema
 from .fields import read_all, write_all
-
+from .versioning import as_saved
 
 
 def to_dict(settings):
@@ -26,8 +26,9 @@ def to_json(settings):
 
 
 def apply_json(settings, text):
-    """Every setting from to_json's text (KeyError if one is missing or unknown)."""
-    write_all(schema.OBJECT, settings, json.loads(text), complete=True)
+    """Every setting from to_json's text (KeyError if one is missing or unknown; text an earlier version
+    wrote, without the settings added since, is read as it was written: versioning.as_saved)."""
+    write_all(schema.OBJECT, settings, as_saved(json.loads(text)), complete=True)
 
 
 def objects_to_json(objects):
@@ -40,16 +41,17 @@ def objects_to_json(objects):
 
 def apply_objects_json(objects, text):
     """Apply objects_to_json's text: one object's settings go to the first of ``objects``,
-    named ones to the objects of those names (names not among ``objects`` are ignored)."""
+    named ones to the objects of those names (names not among ``objects`` are ignored). Text an
+    earlier version wrote is read as it was written (versioning.as_saved)."""
     data = json.loads(text)
     if isinstance(data, dict) and set(data) == {"objects"}:
         by_name = {obj.name: obj for obj in objects}
         for name, settings in dict(data["objects"]).items():
             if name in by_name:
-                write_all(schema.OBJECT, by_name[name].gauss_stylization, settings, complete=True)
+                write_all(schema.OBJECT, by_name[name].gauss_stylization, as_saved(settings), complete=True)
         return
     if objects:
-        write_all(schema.OBJECT, objects[0].gauss_stylization, data, complete=True)
+        write_all(schema.OBJECT, objects[0].gauss_stylization, as_saved(data), complete=True)
 
 
 def apply_dict(settings, data):

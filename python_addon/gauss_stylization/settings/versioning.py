@@ -16,8 +16,12 @@ a field they predate is read as ``before`` (as_recorded).
 
 A file's objects are brought up to date when it loads (load_post); objects that got settings in this
 session are stamped when the file is saved (save_pre), since they already follow today's rules. An
-object appended from a file saved before the stamp, or in a file opened
-while the add-on was off, follows today's rules (set such a field by hand to get the old result).
+object stamped with an earlier version that did not come in through load_post (appended from such a
+file, or loaded before the add-on was updated in the same session) is brought up to date as soon as
+the add-on meets it: when the add-on registers, when a run of it is planned, and at the latest when
+the file is saved, before the stamp. An object appended from a file saved before the stamp, or in a
+file opened while the add-on was off, cannot be told from a new one and follows today's rules (set
+such a field by hand to get the old result).
 """
 
 import bpy
@@ -56,12 +60,36 @@ def bring_up_to_date(settings):
     settings.settings_version = VERSION
 
 
+def bring_stamped_up_to_date(settings):
+    """bring_up_to_date where the stamp says an earlier version wrote the settings (0 < stamp < VERSION):
+    a stamp of 0 is also what settings made in this session have, which follow today's rules."""
+    if 0 < settings.settings_version < VERSION:
+        bring_up_to_date(settings)
+
+
+def _bring_stamped_objects_up_to_date():
+    for obj in bpy.data.objects:
+        if _has_settings(obj):
+            bring_stamped_up_to_date(obj.gauss_stylization)
+
+
 def as_recorded(data):
     """A kept run's settings as its recipe holds them (settings_io.to_dict when the run started), read
     under the rules they were recorded with: a field whose default changed later is missing from a
     recipe recorded before it existed, and gets its value from before the change (not the object's
     value now), so that Replay and Follow Edits repeat the run bit for bit."""
     return dict({field.name: field.before for field in CHANGED if field.name not in data}, **data)
+
+
+def as_saved(data):
+    """Settings a user saved (a batch preset, a script's settings_json) read as they were saved: a whole
+    dump of an object's settings (settings_io.to_dict) that lacks only fields whose default changed was
+    written before they existed, and is read as_recorded. Anything else is a partial set, whose missing
+    fields keep the object's values."""
+    missing = {field.name for field in schema.OBJECT} - set(data)
+    if missing and missing <= {field.name for field in CHANGED}:
+        return as_recorded(data)
+    return data
 
 
 @bpy.app.handlers.persistent
@@ -73,6 +101,7 @@ def _update_loaded_file(*_args):
 
 @bpy.app.handlers.persistent
 def _stamp_before_save(*_args):
+    _bring_stamped_objects_up_to_date()
     for obj in bpy.data.objects:
         if _has_settings(obj) and obj.gauss_stylization.settings_version < VERSION:
             obj.gauss_stylization.settings_version = VERSION
@@ -81,9 +110,20 @@ def _stamp_before_save(*_args):
 HANDLERS = (("load_post", _update_loaded_file), ("save_pre", _stamp_before_save))
 
 
+def _bring_up_to_date_after_register():
+    _bring_stamped_objects_up_to_date()
+    return None  # once
+
+
 def register_handlers():
     app_handlers.add(HANDLERS)
+    # A file open while the add-on is enabled or updated was read by an older add-on, or by none: its
+    # stamped objects are brought up to date once Blender lets the add-on write (not inside register).
+    if not bpy.app.timers.is_registered(_bring_up_to_date_after_register):
+        bpy.app.timers.register(_bring_up_to_date_after_register, first_interval=0.0)
 
 
 def unregister_handlers():
     app_handlers.remove(HANDLERS)
+    if bpy.app.timers.is_registered(_bring_up_to_date_after_register):
+        bpy.app.timers.unregister(_bring_up_to_date_after_register)
