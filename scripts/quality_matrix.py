@@ -90,7 +90,7 @@ def _page(records, seconds, problems, commit, meshes_left=0):
         "summed over the solver's threads).",
         "", "## What fails today", "",
         "Against the quality criteria (guard: no new pairs, a share within 0.05 of the plain run's on closed "
-        "meshes, never converged while held back; painting: a uniform weight w within 0.1 of the linear response "
+        "meshes, never converged while held back, held back only where the plain run crosses; painting: a uniform weight w within 0.1 of the linear response "
         "share(0) + w (share(1) - share(0)), 0.3 more share at the heavy end of a gradient where the unpainted "
         "style gains more than that), and the basics "
         "of every run (converged, finite and bounded, no crash; broken meshes may be refused with a clear "
@@ -100,6 +100,12 @@ def _page(records, seconds, problems, commit, meshes_left=0):
         lines += [f"### {heading} ({len(sentences)})", ""] + ([f"- {f}" for f in sentences] or ["- none"]) + [""]
     lines += ["### Threshold violations in this run", ""]
     lines += [f"- {p}" for p in problems] or ["- none"]
+    held = report.held_at_contacts(records)
+    lines += ["", f"## Held at a contact ({len(held)}): the guard's purpose, not failures", "",
+              "Guarded runs that stopped held back where the same run without the guard passes through the "
+              "surface. They report held (the status bar says so, and Select Held Faces shows where), never converged; "
+              "their shares and pairs are judged above.", ""]
+    lines += [f"- {h}" for h in held] or ["- none"]
     lines += ["", "## The matrix", "", report.markdown_table(records), ""]
     return "\n".join(lines)
 

@@ -69,10 +69,23 @@ def markdown_table(records):
     return "\n".join(lines)
 
 
+def _plain_new_pairs(r, by_cell):
+    """The crossing pairs the same run without the guard made (None where it has no such record)."""
+    plain = by_cell.get((r["mesh"], options.by_name(r["option"]).plain), {})
+    return plain.get("new_pairs")
+
+
+def _held_at_a_contact(r, by_cell):
+    """A guarded run that stopped held back where the plain run passes through the surface: the guard
+    doing its job (the issue's status rule: reported as held, never as converged), not a failure."""
+    return bool(r.get("stopped") and r.get("held_back") and _plain_new_pairs(r, by_cell))
+
+
 def _guard_findings(r, by_cell):
     found = []
-    if r["stopped"] and r.get("held_back"):
-        found.append(f"the guard stopped the run ({r['held_last']} vertices held back in its last step)")
+    if r["stopped"] and r.get("held_back") and not _held_at_a_contact(r, by_cell):
+        found.append(f"the guard stopped the run where the plain run crosses nowhere ({r['held_last']} vertices "
+                     f"held back in its last step)")
     if r["converged"] and r.get("unguarded_still") is False:
         found.append(f"it reports converged with {r['held_last']} vertices held back in its last step, but a step "
                      f"without the guard then moves reldV {r['unguarded_reldv']:.2g}")
@@ -132,6 +145,21 @@ def findings(records):
             found["Avoid Self-Intersections"] += [f"{where}: {f}" for f in _guard_findings(r, by_cell)]
         if "paint" in tags:
             found["Painted strength"] += [f"{where}: {f}" for f in _paint_findings(r, by_cell)]
+    return found
+
+
+def held_at_contacts(records):
+    """Guarded runs that ended held back where the plain run makes crossings: sentences naming mesh and
+    option, the plain run's new pairs and the share against it (listed apart from the failures)."""
+    by_cell = _cells(records)
+    found = []
+    for r in records:
+        if "guard" in options.by_name(r["option"]).tags and "crash" not in r and "error" not in r \
+                and _held_at_a_contact(r, by_cell):
+            drop = _plain_share(r, by_cell)
+            found.append(f"{r['mesh']} / {r['option']}: held ({r['held_last']} vertices in its last step) where the "
+                         f"plain run makes {_plain_new_pairs(r, by_cell)} crossing pairs; share "
+                         f"{'n/a' if drop is None else f'{drop:+.3f}'} against it")
     return found
 
 

@@ -108,3 +108,26 @@ def test_new_pairs_next_to_the_input_crossings_are_told_from_the_others():
     assert measure_run.next_to_input_crossings(F, pairs_in, near) == 2
     assert measure_run.next_to_input_crossings(F, pairs_in, far) == 0
     assert measure_run.next_to_input_crossings(F, set(), near) == 0
+
+
+def test_a_run_held_where_the_plain_run_crosses_is_listed_apart_from_the_failures():
+    """The guard holding a run back where the same run without it passes through the surface is what it
+    is for: listed as held at a contact, not among the failures. Held where the plain run crosses
+    nowhere, it is a failure."""
+    import report
+    held = _record(converged=False, held_back=True, held_last=12, held_max=30, vertices=100, share=0.78)
+    for plain_pairs, failing in ((61, False), (0, True)):
+        records = [_record(option="cube", new_pairs=plain_pairs, share=0.8), held]
+        guard = report.findings(records)["Avoid Self-Intersections"]
+        apart = report.held_at_contacts(records)
+        assert bool(guard) is failing and bool(apart) is not failing
+        if failing:
+            assert guard == ["m.obj / cube +avoid: the guard stopped the run where the plain run crosses nowhere "
+                             "(12 vertices held back in its last step)"]
+        else:
+            assert apart == ["m.obj / cube +avoid: held (12 vertices in its last step) where the plain run makes 61 "
+                             "crossing pairs; share -0.020 against it"]
+    # Held and far below the plain run's share, it fails on the share whatever the plain run crossed.
+    low = dict(held, share=0.5, kind="closed")
+    guard = report.findings([_record(option="cube", new_pairs=61, share=0.8), low])["Avoid Self-Intersections"]
+    assert guard == ["m.obj / cube +avoid: share 0.500, 0.300 below the plain run's (the criterion: within 0.05)"]
