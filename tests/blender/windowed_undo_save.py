@@ -10,6 +10,8 @@ deletion or a save in the middle of a run. Run by run_windowed.sh; uses windowed
   - Ctrl+S during a run, then Esc, then reopening: the file holds the mesh as it was before the run,
     the status bar said so, and Reset still restores the original. The same for a save during a bake
     (the scene frame the bake moves is saved as before the bake).
+  - The add-on updated in the session after an older one read the file, then a save: the objects keep
+    what they did under the older add-on's settings (settings/versioning.py).
 
 GAUSS_WINDOWED_ONLY=name,name runs only those scenarios. The summary goes to
 BUILD_DIR/screenshots/windowed_undo_save_result.txt.
@@ -290,8 +292,38 @@ def autosave_waits_for_the_run(name):
 
 # -- scenario -------------------------------------------------------------------------------------
 
+def update_the_add_on_then_save(name):
+    """A file the add-on of settings version 3 opened (its object stamped 3, a Region painted 0.5 with
+    Resolution Independent: the old paint curve, never written out), then the add-on updated in the same
+    session (unregistered and registered, as an update does), then saved and reopened: the object keeps
+    its old curve (settings/versioning.py), shown in the panel, where it used to be stamped without."""
+    obj = bpy.data.objects[name]
+    group = obj.vertex_groups.new(name="Half")
+    group.add(list(range(len(obj.data.vertices))), 0.5, 'REPLACE')
+    settings = obj.gauss_stylization
+    settings.styles[0].vertex_group = "Half"
+    settings.resolution_independent = True
+    settings.settings_version = 3
+    settings.property_unset("old_paint_curve")
+    addon().unregister()
+    addon().register()
+    yield 1.0
+    settings = bpy.data.objects[name].gauss_stylization
+    check("an object an older add-on read is brought up to date when the add-on is updated",
+          settings.old_paint_curve is True and settings.settings_version == addon().settings.versioning.VERSION,
+          "old_paint_curve %s, version %d" % (settings.old_paint_curve, settings.settings_version))
+    path = os.path.join(FOLDER, "updated.blend")
+    save_as(path)
+    reopen(path)
+    yield 0.5
+    settings = bpy.data.objects[name].gauss_stylization
+    check("... and the file saved after the update keeps the old curve",
+          settings.old_paint_curve is True and settings.is_property_set("old_paint_curve"))
+
+
 SCENARIOS = ("delete_first_run", "delete_first_run_after_a_move", "ctrl_z_mid_run", "edit_undo_mid_run",
-             "save_mid_run_then_reopen", "save_during_a_bake")  # the last two replace the whole file
+             "save_mid_run_then_reopen", "save_during_a_bake",
+             "update_the_add_on_then_save")  # the last three replace the whole file
 
 
 def delete_first_run(_name):

@@ -109,21 +109,32 @@ def _stamp_before_save(*_args):
 
 HANDLERS = (("load_post", _update_loaded_file), ("save_pre", _stamp_before_save))
 
-
-def _bring_up_to_date_after_register():
-    _bring_stamped_objects_up_to_date()
-    return None  # once
+_pending = []  # the timer register_handlers() started, until it has run
 
 
 def register_handlers():
     app_handlers.add(HANDLERS)
     # A file open while the add-on is enabled or updated was read by an older add-on, or by none: its
     # stamped objects are brought up to date once Blender lets the add-on write (not inside register).
-    if not bpy.app.timers.is_registered(_bring_up_to_date_after_register):
-        bpy.app.timers.register(_bring_up_to_date_after_register, first_interval=0.0)
+    # A new function each time: Blender may still list a timer that ran moments ago (tagged for removal),
+    # and would then take the same function as registered.
+    def bring_up_to_date_once():
+        if bring_up_to_date_once in _pending:
+            _pending.remove(bring_up_to_date_once)
+        _bring_stamped_objects_up_to_date()
+        return None
+    _cancel_pending()
+    _pending.append(bring_up_to_date_once)
+    bpy.app.timers.register(bring_up_to_date_once, first_interval=0.0)
+
+
+def _cancel_pending():
+    while _pending:
+        timer = _pending.pop()
+        if bpy.app.timers.is_registered(timer):
+            bpy.app.timers.unregister(timer)
 
 
 def unregister_handlers():
     app_handlers.remove(HANDLERS)
-    if bpy.app.timers.is_registered(_bring_up_to_date_after_register):
-        bpy.app.timers.unregister(_bring_up_to_date_after_register)
+    _cancel_pending()
