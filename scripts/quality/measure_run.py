@@ -38,19 +38,34 @@ def crossing_pairs(V, F):
     return {tuple(p) for p in gauss_core.self_intersections(V, F).tolist()}
 
 
-def next_to_input_crossings(F, pairs_in, pairs):
-    """How many of `pairs` have both faces with a corner on, or one edge from, a face of the input's
-    crossing pairs: where the guard lets a crossing the input had slide on (self_intersection.h)."""
-    faces = np.array(sorted({f for pair in pairs_in for f in pair}), np.int64)
-    if not len(pairs) or not len(faces):
+def slid_from_input_crossings(F, pairs_in, pairs):
+    """How many of `pairs` (new crossing pairs) lie in a crossing region that holds one of the input's
+    crossing pairs: the regions are the faces of `pairs_in` and `pairs`, joined where two share a corner
+    or cross each other. The guard lets a crossing the input had slide on to the faces around it, step
+    after step (self_intersection.h), so the region may move and grow; a pair in a region of its own is
+    a crossing that began somewhere else, which the guard never allows."""
+    if not pairs or not pairs_in:
         return 0
-    near = np.zeros(int(F.max()) + 1, bool)
-    near[F[faces].ravel()] = True
-    edges = F[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    ring = near.copy()
-    ring[edges[near[edges[:, 0]], 1]] = True
-    ring[edges[near[edges[:, 1]], 0]] = True
-    return sum(1 for f, g in pairs if ring[F[f]].any() and ring[F[g]].any())
+    faces = sorted({f for pair in pairs_in | set(pairs) for f in pair})
+    parent = {f: f for f in faces}
+
+    def root(f):
+        while parent[f] != f:
+            parent[f] = parent[parent[f]]
+            f = parent[f]
+        return f
+
+    first_face_at = {}
+    for f in faces:
+        for v in F[f].tolist():
+            if v in first_face_at:
+                parent[root(f)] = root(first_face_at[v])
+            else:
+                first_face_at[v] = f
+    for f, g in pairs_in | set(pairs):
+        parent[root(f)] = root(g)
+    seeded = {root(f) for pair in pairs_in for f in pair}
+    return sum(1 for f, _g in pairs if root(f) in seeded)
 
 
 def mesh_kind(V, F):
@@ -129,7 +144,7 @@ def run_option(option, V, F, pairs_in):
         pairs_out = crossing_pairs(W, F)
         new = pairs_out - pairs_in
         record.update(pairs_out=len(pairs_out), new_pairs=len(new),
-                      new_pairs_sliding=next_to_input_crossings(F, pairs_in, new))
+                      new_pairs_sliding=slid_from_input_crossings(F, pairs_in, new))
     if weights is not None and len(weights) and (weights == weights[0, 0]).all():
         record["uniform_weight"] = float(weights[0, 0])
     if weights is not None and finite and (weights <= 0.2).any() and (weights >= 0.8).any():

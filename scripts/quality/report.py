@@ -94,8 +94,8 @@ def _guard_findings(r, by_cell):
     if r.get("new_pairs"):
         sliding = r.get("new_pairs_sliding", 0)
         found.append(f"{r['new_pairs']} new crossing pairs" + (
-            f" ({'all' if sliding == r['new_pairs'] else sliding} next to the input's crossings, which the guard "
-            f"lets slide on)" if sliding else ""))
+            f" ({'all' if sliding == r['new_pairs'] else sliding} in the crossing region that slid on from the "
+            f"input's {r['pairs_in']}, which the guard allows)" if sliding else ""))
     drop = _plain_share(r, by_cell)
     if r.get("kind") == "closed" and drop is not None and drop < -GUARD_SHARE_DROP:
         found.append(f"share {r['share']:.3f}, {-drop:.3f} below the plain run's (the criterion: within {GUARD_SHARE_DROP})")

@@ -95,19 +95,25 @@ def test_a_worker_that_crashes_costs_one_record_and_the_mesh_goes_on(monkeypatch
     assert "error" in records[0] and "error" in records[2]
 
 
-def test_new_pairs_next_to_the_input_crossings_are_told_from_the_others():
-    """A crossing the input had may slide on to the faces around it (the guard allows that); the
-    matrix counts such new pairs apart, and only those: a pair two rings away is not one of them."""
+def test_new_pairs_slid_from_the_input_crossings_are_told_from_the_others():
+    """A crossing the input had may slide on to the faces around it, step after step (the guard allows
+    that); the matrix counts the new pairs in a crossing region that holds an input crossing apart, and
+    only those: a pair in a region of its own began elsewhere."""
     sys.path.insert(0, str(BUILD / "python"))  # measure_run imports gauss_core
     import measure_run
     # A strip of triangles along x: face 2k = (k, k+1, k+100), face 2k+1 = (k+1, k+101, k+100).
     F = np.array([f for k in range(30) for f in ((k, k + 1, k + 100), (k + 1, k + 101, k + 100))])
     pairs_in = {(0, 40)}  # faces 0 and 40 (columns 0 and 20) crossed in the input
-    near = {(1, 41), (2, 39)}  # each face shares a corner with, or is one edge from, a face of that pair
-    far = {(10, 41), (1, 50)}  # face 10 (column 5) and face 50 (column 25) are rings away from it
-    assert measure_run.next_to_input_crossings(F, pairs_in, near) == 2
-    assert measure_run.next_to_input_crossings(F, pairs_in, far) == 0
-    assert measure_run.next_to_input_crossings(F, set(), near) == 0
+    near = {(1, 41), (2, 39)}  # each face shares a corner with a face of that pair
+    far = {(5, 44)}  # face 5 (column 2) and face 44 (column 22) share no corner with faces 0 and 40
+    chain = {(3, 41)}  # face 3 shares a corner with face 5, face 41 with face 40
+    apart = {(10, 50)}  # faces 10 and 50 (columns 5 and 25) touch no crossing face
+    slid = measure_run.slid_from_input_crossings
+    assert slid(F, pairs_in, near) == 2
+    assert slid(F, pairs_in, far) == 0 and slid(F, pairs_in, apart) == 0
+    assert slid(F, pairs_in, far | chain) == 2  # the crossing slid on through face 3 to face 5
+    assert slid(F, pairs_in, near | far | chain | apart) == 4
+    assert slid(F, set(), near) == 0
 
 
 def test_a_run_held_where_the_plain_run_crosses_is_listed_apart_from_the_failures():
