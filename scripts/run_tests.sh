@@ -40,11 +40,10 @@ run_part() {  # name, command...
 }
 
 export OMP_NUM_THREADS="${OMP_NUM_THREADS:-2}"
-# Two C++ test cases at a time: most run on one thread (the whole set 72 s one at a time, 47 s two at a time).
 if [ $fast -eq 1 ]; then
-  run_part "C++ tests (ctest, fast)" ctest --test-dir build --output-on-failure --parallel 2 -E "$SLOW_CPP_TESTS_REGEX"
+  run_part "C++ tests (ctest, fast)" ctest --test-dir build --output-on-failure -E "$SLOW_CPP_TESTS_REGEX"
 else
-  run_part "C++ tests (ctest)" ctest --test-dir build --output-on-failure --parallel 2
+  run_part "C++ tests (ctest)" ctest --test-dir build --output-on-failure
 fi
 run_part "Python module (pytest)" env GAUSS_BUILD_DIR="$PWD/build" /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/python
 run_part "Quality matrix, fast subset (docs/quality.md)" \

@@ -84,8 +84,9 @@ def _held_at_a_contact(r, by_cell):
 def _guard_findings(r, by_cell):
     found = []
     if r["stopped"] and r.get("held_back") and not _held_at_a_contact(r, by_cell):
-        found.append(f"the guard stopped the run where the plain run crosses nowhere ({r['held_last']} vertices "
-                     f"held back in its last step)")
+        where = ("where the plain run crosses nowhere" if _plain_new_pairs(r, by_cell) is not None
+                 else "(no plain run to compare with)")
+        found.append(f"the guard stopped the run {where} ({r['held_last']} vertices held back in its last step)")
     if r["converged"] and r.get("unguarded_still") is False:
         found.append(f"it reports converged with {r['held_last']} vertices held back in its last step, but a step "
                      f"without the guard then moves reldV {r['unguarded_reldv']:.2g}")

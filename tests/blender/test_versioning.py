@@ -161,12 +161,46 @@ def test_a_run_brings_a_stamped_object_up_to_date_first(addon):
     assert obj.gauss_stylization.old_paint_curve is True
 
 
-def _dump_of_version_0(addon, obj):
-    """to_dict's settings as the add-on before settings versions wrote them: no field added since."""
+def test_replay_of_a_stamped_object_keeps_its_old_rule(addon):
+    """Replay restores the object's settings when it ends: a stamped object is brought up to date
+    before that snapshot, so its old curve is not overwritten with today's value."""
+    obj = _half_painted_sphere("Appended")
+    helpers.activate(obj)
+    assert bpy.ops.object.gauss_stylize(iterations=4) == {'FINISHED'}
+    obj.gauss_stylization.settings_version = 3  # as if appended from a file of settings version 3
+    obj.gauss_stylization.property_unset("old_paint_curve")
+    assert bpy.ops.object.gauss_replay() == {'FINISHED'}
+    settings = obj.gauss_stylization
+    assert settings.old_paint_curve is True and settings.settings_version == addon.settings.versioning.VERSION
+
+
+def _dump_of_version(addon, obj, version):
+    """to_dict's settings as the add-on at settings ``version`` wrote them: without the fields added or
+    given a new default since."""
     data = addon.settings_io.to_dict(obj.gauss_stylization)
-    for field in addon.settings.versioning.CHANGED:
-        del data[field.name]
+    for field in addon.settings.schema.OBJECT:
+        if (field.added or 0) > version or (field.since or 0) > version:
+            del data[field.name]
     return data
+
+
+def test_a_whole_dump_of_an_earlier_version_is_filled_as_it_ran(addon):
+    """as_saved: the fields a version did not have get what it ran with; a dump of today, or a partial
+    set, is left as it is."""
+    as_saved = addon.settings.versioning.as_saved
+    obj = _half_painted_sphere()
+    version_0 = _dump_of_version(addon, obj, 0)
+    assert {"uncovered", "resolution_independent", "square_flat_regions", "bake_warmup_frames"}.isdisjoint(version_0)
+    read = as_saved(version_0)
+    assert read["uncovered"] == 'FIRST_SLOT' and read["resolution_independent"] is False
+    assert read["weigh_finer_faces"] is False and read["old_paint_curve"] is False  # not without the setting
+    assert read["square_flat_regions"] is False and read["bake_warmup_frames"] == 8  # added: their defaults
+    read = as_saved(_dump_of_version(addon, obj, 3))  # Resolution Independent on, the old curve not yet
+    assert read["old_paint_curve"] is True and read["weigh_finer_faces"] is False
+    today = addon.settings_io.to_dict(obj.gauss_stylization)
+    assert as_saved(today) == today and as_saved({"lam": 2.0}) == {"lam": 2.0}
+    del version_0["lam"]
+    assert as_saved(version_0) == version_0  # lacks a field every version had: partial
 
 
 def test_settings_an_earlier_version_saved_are_read_as_saved(addon, tmp_path):
@@ -175,7 +209,7 @@ def test_settings_an_earlier_version_saved_are_read_as_saved(addon, tmp_path):
     then = _half_painted_sphere("Then")
     _as_version_0_ran(then)
     then.gauss_stylization.uncovered = 'FIRST_SLOT'
-    dump = _dump_of_version_0(addon, then)
+    dump = _dump_of_version(addon, then, 0)
     helpers.activate(then)
     assert bpy.ops.object.gauss_stylize(iterations=8) == {'FINISHED'}
     preset = tmp_path / "old_preset.json"
@@ -197,6 +231,5 @@ def test_settings_an_earlier_version_saved_are_read_as_saved(addon, tmp_path):
     np.testing.assert_allclose(helpers.coords(now), helpers.coords(then), rtol=0, atol=1e-9)
     assert np.abs(helpers.coords(now) - helpers.coords(today)).max() > 1e-4  # the dump's rules, not today's
     dump.pop("lam")  # not a field whose default changed: a script's error, as before
-    assert "lam" not in dump
     with pytest.raises(RuntimeError, match="missing setting"):
         bpy.ops.object.gauss_stylize(iterations=8, settings_json=json.dumps(dump))

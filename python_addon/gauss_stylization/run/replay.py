@@ -12,7 +12,7 @@ read the recipe with ``recipe(obj)``.
 from ..errors import SettingsError
 from ..mesh import follow_store, mesh_io, output, recipe_store
 from ..settings.settings_io import apply_dict, to_dict
-from ..settings.versioning import as_recorded
+from ..settings.versioning import as_recorded, bring_stamped_up_to_date
 from . import rerun
 from .session import Plan, Session
 
@@ -54,6 +54,9 @@ def replay(obj, progress=None):
                             "from another version); they cannot be replayed")
     runs = stored["runs"]
     settings = obj.gauss_stylization
+    # Before the snapshot the end restores: Plan would bring a stamped object up to date under it, and
+    # restoring a snapshot taken earlier would then write today's value over the old rule for good.
+    bring_stamped_up_to_date(settings)
     before, kept = to_dict(settings), _snapshot(obj)
     if runs[0]["output"] == output.MeshTarget.kind:
         mesh_io.write_vertex_coords(mesh, recipe_store.unpack(stored["rest"]))

@@ -21,7 +21,7 @@ from ..settings import schema
 from ..settings.fields import Live, changes
 from ..settings.settings_io import apply_dict, to_dict
 from ..settings.validation import check_settings
-from ..settings.versioning import as_recorded
+from ..settings.versioning import as_recorded, bring_stamped_up_to_date
 from .session import Plan, run_calls, solver_changes
 
 
@@ -84,6 +84,7 @@ def prepare(copy, source_input=None):
             if applied["pin_group"] in missing:
                 applied["pin_group"] = ""
     settings = copy.gauss_stylization
+    bring_stamped_up_to_date(settings)  # before the snapshot restored below (replay.py says why)
     before = to_dict(settings)
     try:
         apply_dict(settings, applied)

@@ -11,7 +11,8 @@ to the object. ``Session(obj)`` does all three at once (scripts, benchmarks).
 
 Used by the live run (one ``step()`` per timer tick), by the scripted operator
 (``step(n)``) and by the tick benchmark. Nothing here touches the UI. A failed
-start leaves the object as it was.
+start leaves the object as it was, except that settings an earlier version wrote
+are brought up to date first (settings/versioning.py), which changes no result.
 """
 
 import time

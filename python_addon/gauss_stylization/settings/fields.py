@@ -77,16 +77,21 @@ class Field:
     before:   the default before ``since``
     before_where: owner -> bool; where an old object needs ``before`` (default: everywhere). Read after
               the fields of earlier versions were brought up to date, so it may read them.
+    added:    the settings version current when a field without ``since`` was added (None: it was there
+              before version 1): a whole dump of the settings that an earlier version wrote lacks it, and
+              reads its default, under which the run was the same (versioning.as_saved)
     """
 
     widget = "prop"  # plain layout.prop row
 
     def __init__(self, name, label, tooltip="", live=Live.NOTHING, panel=None, text=None, relevant=None,
-                 shown=None, update=None, since=None, before=None, before_where=None):
+                 shown=None, update=None, since=None, before=None, before_where=None, added=None):
         if (since is None) != (before is None):
             raise ValueError("%s: since and before go together" % name)
+        if since is not None and added is not None:
+            raise ValueError("%s: a field with since reads before where it is missing, not its default" % name)
         self.name, self.label, self.tooltip = name, label, tooltip
-        self.since, self.before = since, before
+        self.since, self.before, self.added = since, before, added
         self.before_where = before_where or _always
         self.live, self.panel, self.text = live, panel, text
         self.relevant = relevant or _always

@@ -228,7 +228,7 @@ OBJECT = (
     Int("proxy_threshold", "Proxy Threshold", "A live run on a mesh with more vertices than this stylizes a "
         "simplified copy of it (a proxy) that the whole mesh follows at every tick, and Enter finishes the whole "
         "mesh at full resolution (docs/interactive.md, Sculpt-sized meshes)", default=300000,
-        hard=(100, 2 ** 31 - 1), soft=(10000, 2000000), panel=Panel.SOLVER),
+        hard=(100, 2 ** 31 - 1), soft=(10000, 2000000), panel=Panel.SOLVER, added=2),
     Bool("keep_volume", "Keep Volume", "After each step scale every closed part of the mesh about its centre "
          "back to its original volume (open parts: to their original area; parts with pinned vertices are "
          "left alone), so the shape does not shrink", live=Live.SETTER, panel=Panel.SOLVER),
@@ -252,7 +252,7 @@ OBJECT = (
     Bool("square_flat_regions", "Square Flat Regions", "Give large flat regions (a cap, a lid, a table top) "
          "straight, square outlines instead of round ones: the faces around each turn towards the axes of its "
          "outline, with either method (docs/styles.md, Square Flat Regions)", live=Live.SETTER,
-         panel=Panel.SOLVER),
+         panel=Panel.SOLVER, added=2),
     Bool("use_modifiers", "Use Modifiers", "Stylize the mesh as it is shown: modifiers, armature and shape "
          "keys at the current frame (otherwise the base mesh, under the modifiers)", default=False,
          panel=Panel.MAIN),
@@ -266,7 +266,7 @@ OBJECT = (
     Bool("follow_edits", "Follow Edits", "New Object output: the kept copy is made again from its source whenever "
          "the source changes (Edit Mode, sculpting, modifiers, shape keys, the frame), off Blender's main thread; "
          "a quick preview shows first while the edits go on (docs/interactive.md, Follow Edits)", default=False,
-         panel=Panel.MAIN, shown=_follows, update=_follow_edits_changed),
+         panel=Panel.MAIN, shown=_follows, update=_follow_edits_changed, added=2),
     VertexGroup("pin_group", "Pin Group", "Vertices in this group (weight above %g) keep their position"
                 % PIN_THRESHOLD, live=Live.PINS, panel=Panel.MAIN),
     Choice("uncovered", "Uncovered Faces", "Where what the styles' Regions leave of a face goes when every "
@@ -293,7 +293,7 @@ OBJECT = (
     Int("bake_warmup_frames", "Warm-up", "With Warm Start, frames a farm chunk (bake/farm_cli.py) bakes "
         "before its first frame without writing them, so that frame continues a run as in one bake; more: "
         "closer to one bake, slower chunks", default=8, hard=(0, 100000), soft=(0, 50), panel=Panel.BAKE,
-        shown=_warm_start),
+        shown=_warm_start, added=1),
     Bool("bake_scene_range", "Scene Range", "Bake Animation bakes the scene's frame range (Frame Start to End); "
          "off: the Start and End below", default=True, panel=Panel.BAKE),
     Int("bake_frame_start", "Start", "First frame Bake Animation bakes", default=1,
@@ -312,7 +312,7 @@ OBJECT = (
          "Colour every face by its angle to the normal its style prefers (Sheet Metal: how far the normals "
          "around it spread from one great circle), green: reached, red: %g degrees or more, grey: no style; "
          "live during a run, in Object Mode, with the scale in the corner of the 3D view" % REACH_SCALE_DEGREES,
-         default=False, panel=Panel.SPHERE, text="Style Reach"),
+         default=False, panel=Panel.SPHERE, text="Style Reach", added=2),
     Slots("styles", "Styles", "GaussStyleSlot", SLOT, owner_name=lambda slot: "Style '%s'" % slot.name),
     Index("active_style_index", "Active Style"),
 )

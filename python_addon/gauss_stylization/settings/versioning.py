@@ -18,10 +18,11 @@ A file's objects are brought up to date when it loads (load_post); objects that 
 session are stamped when the file is saved (save_pre), since they already follow today's rules. An
 object stamped with an earlier version that did not come in through load_post (appended from such a
 file, or loaded before the add-on was updated in the same session) is brought up to date as soon as
-the add-on meets it: when the add-on registers, when a run of it is planned, and at the latest when
-the file is saved, before the stamp. An object appended from a file saved before the stamp, or in a
-file opened while the add-on was off, cannot be told from a new one and follows today's rules (set
-such a field by hand to get the old result).
+the add-on meets it: when the add-on registers (on a timer, which Blender runs only with a window),
+when a run of it is planned or replayed, and at the latest when the file is saved, before the stamp.
+Objects without a stamp cannot be told from new ones and follow today's rules (set such a field by
+hand to get the old result): one appended from a file saved before the stamp, one in a file opened
+while the add-on was off, and one given settings in this session before the add-on was updated.
 """
 
 import bpy
@@ -83,13 +84,31 @@ def as_recorded(data):
 
 def as_saved(data):
     """Settings a user saved (a batch preset, a script's settings_json) read as they were saved: a whole
-    dump of an object's settings (settings_io.to_dict) that lacks only fields whose default changed was
-    written before they existed, and is read as_recorded. Anything else is a partial set, whose missing
-    fields keep the object's values."""
+    dump of an object's settings (settings_io.to_dict) that lacks only fields added since (``added``) or
+    whose default changed since (``since``) was written by an earlier version. Its missing fields are
+    filled, so that it runs as it did then: an added field with its default, a changed one with its
+    ``before`` where that version's rules gave it (``before_where``, read on the dump; today's default
+    elsewhere). Anything else is a partial set, returned as it is (its missing fields keep the object's
+    values)."""
     missing = {field.name for field in schema.OBJECT} - set(data)
-    if missing and missing <= {field.name for field in CHANGED}:
-        return as_recorded(data)
-    return data
+    may_lack = {field.name for field in schema.OBJECT if field.added is not None} | {f.name for f in CHANGED}
+    if not missing or not missing <= may_lack:
+        return data
+    filled = dict(data)
+    for field in schema.OBJECT:
+        if field.name in missing and field.added is not None:
+            filled[field.name] = field.default
+    for field in CHANGED:  # oldest first: a field's before_where reads the older fields filled in
+        if field.name in missing:
+            filled[field.name] = field.before if field.before_where(_Dump(filled)) else field.default
+    return filled
+
+
+class _Dump:
+    """A settings dict read as the settings object before_where expects (attributes)."""
+
+    def __init__(self, data):
+        self.__dict__.update(data)
 
 
 @bpy.app.handlers.persistent
@@ -101,10 +120,10 @@ def _update_loaded_file(*_args):
 
 @bpy.app.handlers.persistent
 def _stamp_before_save(*_args):
-    _bring_stamped_objects_up_to_date()
     for obj in bpy.data.objects:
-        if _has_settings(obj) and obj.gauss_stylization.settings_version < VERSION:
-            obj.gauss_stylization.settings_version = VERSION
+        if _has_settings(obj):
+            bring_stamped_up_to_date(obj.gauss_stylization)  # an older version's: brought up to date
+            obj.gauss_stylization.settings_version = VERSION  # this session's: stamped (already today's)
 
 
 HANDLERS = (("load_post", _update_loaded_file), ("save_pre", _stamp_before_save))
