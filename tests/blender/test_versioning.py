@@ -203,6 +203,22 @@ def test_a_whole_dump_of_an_earlier_version_is_filled_as_it_ran(addon):
     assert as_saved(version_0) == version_0  # lacks a field every version had: partial
 
 
+# The object settings of settings version 1 (2026-11-27), the first with a stamp: a field added since names
+# its version (added=) or its old default (since=, before=), so that as_saved knows old dumps lack it.
+VERSION_1_FIELDS = {
+    "active_style_index", "admm_iterations", "avoid_self_intersections", "bake_filepath", "bake_frame_end",
+    "bake_frame_start", "bake_scene_range", "bake_steps", "bake_warm_start", "cubic_lambda", "iterations",
+    "keep_volume", "lam", "method", "output", "pin_group", "show_gauss_sphere", "styles", "tolerance",
+    "use_modifiers"}
+
+
+def test_every_field_added_since_version_1_says_when(addon):
+    unmarked = {f.name for f in addon.settings.schema.OBJECT if f.added is None and f.since is None}
+    assert unmarked == VERSION_1_FIELDS, (
+        "a new object setting needs added=VERSION (or since/before if it changes a result): %s"
+        % sorted(unmarked - VERSION_1_FIELDS))
+
+
 def test_settings_an_earlier_version_saved_are_read_as_saved(addon, tmp_path):
     """A whole batch preset or a script's settings_json written before Other Faces existed stylizes as it
     did (First Style, without Resolution Independent); a partial preset keeps today's rules."""
