@@ -99,7 +99,7 @@ def plan_objects(operator, objects):
         try:
             plan = Plan(obj)
         except (SettingsError, NativeModuleError) as exc:
-            if added:  # a failed start changes nothing, settings included (but the versioning, which keeps results)
+            if added:  # a failed start changes nothing a result depends on, settings included
                 obj.gauss_stylization.styles.remove(0)
             skipped.append((obj.name, str(exc)))
             continue

@@ -120,6 +120,12 @@ def _not_cubic(settings):
     return settings.method != CUBIC
 
 
+def _old_rule_shown(name):
+    """Where a Bool keeping an old rule of Resolution Independent for the Gauss method is shown: where it
+    is on and acts, so that the artist sees it and can untick it."""
+    return lambda settings: settings.resolution_independent and getattr(settings, name) and not is_cubic(settings)
+
+
 def _is_custom(slot):
     return slot.preset == CUSTOM
 
@@ -241,14 +247,12 @@ OBJECT = (
          "method, where a finer mesh is stylized more strongly", new_objects=True, since=2, live=Live.SETTER,
          panel=Panel.SOLVER),
     # Resolution Independent's rule before settings version 3, which objects saved under it with the setting
-    # on keep (settings/versioning.py). Shown only where it is on and acts (the Gauss method's normal step
-    # reads it; the cubic method does not), so the artist sees it and can untick it.
+    # on keep (settings/versioning.py). Only the Gauss method's normal step reads it.
     Bool("weigh_finer_faces", "Weigh Finer Faces (Old)", "Resolution Independent as it was before "
          "2026-12-06, which this object was saved with: it also weighs the style of faces finer than the "
          "reference density by their area. Untick for today's rule, with which more runs settle "
          "(docs/resolution.md)", since=3, before=True, before_where=lambda s: s.resolution_independent,
-         live=Live.SETTER, panel=Panel.SOLVER,
-         shown=lambda s: s.resolution_independent and s.weigh_finer_faces and not is_cubic(s)),
+         live=Live.SETTER, panel=Panel.SOLVER, shown=_old_rule_shown("weigh_finer_faces")),
     Bool("square_flat_regions", "Square Flat Regions", "Give large flat regions (a cap, a lid, a table top) "
          "straight, square outlines instead of round ones: the faces around each turn towards the axes of its "
          "outline, with either method (docs/styles.md, Square Flat Regions)", live=Live.SETTER,
@@ -283,7 +287,7 @@ OBJECT = (
          "stylized less than their share. Untick for today's curve, with which a painted weight acts about in "
          "proportion (docs/interactive.md, The paint curve)", default=False, since=4, before=True,
          before_where=lambda s: s.resolution_independent, live=Live.CURVE, panel=Panel.STYLES,
-         shown=lambda s: s.resolution_independent and s.old_paint_curve and not is_cubic(s)),
+         shown=_old_rule_shown("old_paint_curve")),
     Int("bake_steps", "Bake Steps", "Solver steps per frame of an animation bake (with Warm Start the "
         "first frame runs Script Steps, the others continue from the previous frame)",
         default=10, hard=(1, 100000), soft=(1, 200), panel=Panel.BAKE),

@@ -25,6 +25,8 @@ hand to get the old result): one appended from a file saved before the stamp, on
 while the add-on was off, and one given settings in this session before the add-on was updated.
 """
 
+from types import SimpleNamespace
+
 import bpy
 from bpy.props import IntProperty
 
@@ -34,6 +36,8 @@ from . import schema
 # Object fields whose default changed, oldest first.
 CHANGED = tuple(sorted((field for field in schema.OBJECT if field.since is not None), key=lambda f: f.since))
 VERSION = max(field.since for field in CHANGED)
+# Object fields an earlier version's whole dump of the settings may lack (as_saved).
+MAY_BE_MISSING = frozenset(field.name for field in schema.OBJECT if field.added is not None or field.since is not None)
 STAMP = "settings_version"
 
 
@@ -48,6 +52,11 @@ def _has_settings(obj):
     when stylized, with the settings it holds). Asked without reading obj.gauss_stylization where it
     was never set, since reading it would give every object of the file settings."""
     return obj.library is None and obj.is_property_set("gauss_stylization")
+
+
+def _settings_in_file():
+    """The settings of every object that has them (_has_settings)."""
+    return [obj.gauss_stylization for obj in bpy.data.objects if _has_settings(obj)]
 
 
 def bring_up_to_date(settings):
@@ -69,9 +78,8 @@ def bring_stamped_up_to_date(settings):
 
 
 def _bring_stamped_objects_up_to_date():
-    for obj in bpy.data.objects:
-        if _has_settings(obj):
-            bring_stamped_up_to_date(obj.gauss_stylization)
+    for settings in _settings_in_file():
+        bring_stamped_up_to_date(settings)
 
 
 def as_recorded(data):
@@ -91,8 +99,7 @@ def as_saved(data):
     elsewhere). Anything else is a partial set, returned as it is (its missing fields keep the object's
     values)."""
     missing = {field.name for field in schema.OBJECT} - set(data)
-    may_lack = {field.name for field in schema.OBJECT if field.added is not None} | {f.name for f in CHANGED}
-    if not missing or not missing <= may_lack:
+    if not missing or not missing <= MAY_BE_MISSING:
         return data
     filled = dict(data)
     for field in schema.OBJECT:
@@ -100,30 +107,21 @@ def as_saved(data):
             filled[field.name] = field.default
     for field in CHANGED:  # oldest first: a field's before_where reads the older fields filled in
         if field.name in missing:
-            filled[field.name] = field.before if field.before_where(_Dump(filled)) else field.default
+            filled[field.name] = field.before if field.before_where(SimpleNamespace(**filled)) else field.default
     return filled
-
-
-class _Dump:
-    """A settings dict read as the settings object before_where expects (attributes)."""
-
-    def __init__(self, data):
-        self.__dict__.update(data)
 
 
 @bpy.app.handlers.persistent
 def _update_loaded_file(*_args):
-    for obj in bpy.data.objects:
-        if _has_settings(obj):
-            bring_up_to_date(obj.gauss_stylization)
+    for settings in _settings_in_file():
+        bring_up_to_date(settings)
 
 
 @bpy.app.handlers.persistent
 def _stamp_before_save(*_args):
-    for obj in bpy.data.objects:
-        if _has_settings(obj):
-            bring_stamped_up_to_date(obj.gauss_stylization)  # an older version's: brought up to date
-            obj.gauss_stylization.settings_version = VERSION  # this session's: stamped (already today's)
+    for settings in _settings_in_file():
+        bring_stamped_up_to_date(settings)  # an older version's: brought up to date
+        settings.settings_version = VERSION  # this session's: stamped (already today's)
 
 
 HANDLERS = (("load_post", _update_loaded_file), ("save_pre", _stamp_before_save))
@@ -135,8 +133,8 @@ def register_handlers():
     app_handlers.add(HANDLERS)
     # A file open while the add-on is enabled or updated was read by an older add-on, or by none: its
     # stamped objects are brought up to date once Blender lets the add-on write (not inside register).
-    # A new function each time: Blender may still list a timer that ran moments ago (tagged for removal),
-    # and would then take the same function as registered.
+    # A new function each time: registered again as one function (if not is_registered), the bring-up
+    # after an update right after enabling was missed one time in three in a window, this way never.
     def bring_up_to_date_once():
         if bring_up_to_date_once in _pending:
             _pending.remove(bring_up_to_date_once)
