@@ -123,23 +123,37 @@ void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, cons
   constexpr double kTwoPi = 6.283185307179586;
   const auto star = [&](int v) {
     const int begin = topo.vertex_corner_start[v], end = topo.vertex_corner_start[v + 1];
+    // The wedge of corner i, from v: its edges a and b (to corners ia and ib), in the face's turning order.
+    int ia = -1, ib = -1;
+    Vector3d a, b;
+    const auto wedge = [&](int i) {
+      const int corner = topo.vertex_corners[i];
+      const std::array<int, 3>& f = topo.faces[corner / 3];
+      const int k = corner % 3;
+      ia = f[(k + 1) % 3];
+      ib = f[(k + 2) % 3];
+      a = X[ia] - X[v];
+      b = X[ib] - X[v];
+    };
     Vector3d n = Vector3d::Zero();
     for (int i = begin; i < end; ++i) {
-      const std::array<int, 3>& f = topo.faces[topo.vertex_corners[i] / 3];
-      n += (X[f[1]] - X[f[0]]).cross(X[f[2]] - X[f[0]]);
+      wedge(i);
+      n += a.cross(b);
     }
     bool flat = n.squaredNorm() > 0;
     // Seen along n, every face must turn the right way (a wedge of less than half a turn), and the
     // wedges must wind around the corner once: a closed star covers the ray along its first edge
     // once (its first wedge; a fold covers it again), an open one sums to less than a full turn.
-    Vector3d ray = Vector3d::Zero();
+    // A wedge (a, b) covers the ray where a x ray . n >= 0 and ray x b . n > 0, that is where
+    // a . m <= 0 < b . m with m = n x ray: two dot products a wedge instead of two cross products.
+    // An edge that is the ray is told by its corner, not by the dot product's rounding: a wedge
+    // starting on the ray covers it where it turns the right way, one ending on it does not.
+    Vector3d m = Vector3d::Zero();
+    int ray = -1;
     double winding = 0;
     int covering = 0;
     for (int i = begin; i < end && flat; ++i) {
-      const int corner = topo.vertex_corners[i];
-      const std::array<int, 3>& f = topo.faces[corner / 3];
-      const int k = corner % 3;
-      const Vector3d a = X[f[(k + 1) % 3]] - X[v], b = X[f[(k + 2) % 3]] - X[v];
+      wedge(i);
       const double turn = a.cross(b).dot(n);
       flat = turn > 0;
       if (star_kind_[v] == kOpenFan) {
@@ -147,8 +161,8 @@ void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, cons
         winding += std::atan2(turn / n.norm(), pa.dot(pb));
         continue;
       }
-      if (i == begin) ray = a;
-      covering += a.cross(ray).dot(n) >= 0 && ray.cross(b).dot(n) > 0;
+      if (i == begin) ray = ia, m = n.cross(a);
+      covering += ib != ray && (ia == ray || a.dot(m) <= 0) && b.dot(m) > 0;
     }
     flat_star_[v] = flat && star_kind_[v] != kNeverFlat && (star_kind_[v] == kClosedStar ? covering == 1 : winding < kTwoPi);
   };

@@ -90,6 +90,7 @@ class FaceBvh {
 
   int build(int begin, int end, int parent, const std::vector<Eigen::Vector3d>& centroid);
   void fit_face(int i, const std::vector<Eigen::Vector3d>& X, double margin);  // i: place in tree order
+  void fit_face_box(int i, const std::vector<Eigen::Vector3d>& X, double margin);  // its box alone
   void fit_node(int n);      // its box and its normal cone
   void fit_node_box(int n);  // its box alone
   // The pairs within node n (a != b: between nodes a and b), depth first.
