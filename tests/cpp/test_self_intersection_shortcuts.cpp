@@ -87,20 +87,20 @@ bool crosses(const Faces& F, const Points& X, int f, int g) {
 }
 
 // In contact: sharing an edge, never; sharing a corner, when they cross; sharing none, when they cross
-// or come closer than the margin.
-bool in_contact(const Faces& F, const Points& X, int f, int g) {
+// or come closer than the margin (the start's own, kStartMargin, when the start's contacts are found).
+bool in_contact(const Faces& F, const Points& X, int f, int g, double margin) {
   Triangle a, b;
   const int shared = arranged(F[f], F[g], X, a, b);
   if (shared >= 2) return false;
   if (shared == 1) return gauss::triangles_cross(a, b, 1);
-  return gauss::triangles_closer_than(a, b, 0, gauss::kContactMargin);
+  return gauss::triangles_closer_than(a, b, 0, margin);
 }
 
 uint64_t key(int f, int g) { return (static_cast<uint64_t>(std::min(f, g)) << 32) | static_cast<uint32_t>(std::max(f, g)); }
 
 // Every pair in contact at X (sorted keys). Faces are taken in the order of their boxes' low x, so that
 // the pairs skipped are those farther apart along x than the margin.
-std::vector<uint64_t> contacts(const Faces& F, const Points& X) {
+std::vector<uint64_t> contacts(const Faces& F, const Points& X, double margin = gauss::kContactMargin) {
   const int n = static_cast<int>(F.size());
   std::vector<Vector3d> lo(n), hi(n);
   std::vector<int> order(n);
@@ -112,17 +112,16 @@ std::vector<uint64_t> contacts(const Faces& F, const Points& X) {
   std::sort(order.begin(), order.end(), [&](int f, int g) { return lo[f].x() < lo[g].x(); });
   std::vector<uint64_t> out;
   for (int i = 0; i < n; ++i)
-    for (int j = i + 1; j < n && lo[order[j]].x() <= hi[order[i]].x() + gauss::kContactMargin; ++j) {
+    for (int j = i + 1; j < n && lo[order[j]].x() <= hi[order[i]].x() + margin; ++j) {
       const int f = order[i], g = order[j];
-      if (((lo[f] - hi[g]).array() > gauss::kContactMargin).any() || ((lo[g] - hi[f]).array() > gauss::kContactMargin).any())
-        continue;
-      if (in_contact(F, X, f, g)) out.push_back(key(f, g));
+      if (((lo[f] - hi[g]).array() > margin).any() || ((lo[g] - hi[f]).array() > margin).any()) continue;
+      if (in_contact(F, X, f, g, margin)) out.push_back(key(f, g));
     }
   std::sort(out.begin(), out.end());
   return out;
 }
 
-// The start's rules: a pair in contact at the start may stay so (if it only touched there, it may not
+// The start's rules: a pair in contact at the start (closer than kStartMargin) may stay so (if it only touched there, it may not
 // cross), a pair next to a crossing of the start may cross (the crossing slides on), any other pair
 // in contact is new.
 struct Start {
@@ -130,7 +129,7 @@ struct Start {
   std::vector<uint64_t> touching, crossing;
   std::vector<std::vector<int>> faces_at;  // #V: the faces around each vertex
 
-  Start(const Faces& faces, const Points& S) : F(faces), touching(contacts(faces, S)) {
+  Start(const Faces& faces, const Points& S) : F(faces), touching(contacts(faces, S, gauss::kStartMargin)) {
     for (uint64_t k : touching)
       if (crosses(F, S, static_cast<int>(k >> 32), static_cast<int>(k & 0xffffffffu))) crossing.push_back(k);
     int nV = 0;
@@ -424,6 +423,36 @@ TEST(SelfIntersectionShortcuts, DuplicatedVerticesTouchAtTheStartAndMayNotCross)
   Points C = m.X;
   for (int v = offset; v < static_cast<int>(C.size()); ++v) C[v].z() += 0.001;
   EXPECT_FALSE(guard_agrees(m, m.X, C, "lifted apart"));
+}
+
+TEST(SelfIntersectionShortcuts, SheetsAHairApartAtTheStartMayTouchButNotCross) {
+  // Two sheets stacked a gap apart (a scan's overlapping sheets): between the contact margin and the
+  // start's margin they count as touching from the start, so pressing them closer holds nothing
+  // back; pressing them through each other is held. Farther apart at the start, pressing them within
+  // the contact margin is a new contact and is held.
+  const auto stacked = [](double gap) {
+    Mesh m = sheet(4, 0.03);
+    const int offset = static_cast<int>(m.X.size());
+    const int faces = static_cast<int>(m.faces.size());
+    m.X.insert(m.X.end(), m.X.begin(), m.X.end());
+    for (int v = offset; v < static_cast<int>(m.X.size()); ++v) m.X[v].z() += gap;
+    for (int f = 0; f < faces; ++f) m.faces.push_back({m.faces[f][0] + offset, m.faces[f][2] + offset, m.faces[f][1] + offset});
+    return std::make_pair(m, offset);
+  };
+  // The upper sheet moved down by `by`, or only its half at x < 0 (bent through the lower sheet).
+  const auto pressed = [](const Mesh& m, int offset, double by, bool half = false) {
+    Points C = m.X;
+    for (int v = offset; v < static_cast<int>(C.size()); ++v)
+      if (!half || C[v].x() < 0) C[v].z() -= by;
+    return C;
+  };
+  const double hair = 0.5 * (gauss::kContactMargin + gauss::kStartMargin);
+  const auto [near, near_offset] = stacked(hair);
+  EXPECT_FALSE(guard_agrees(near, near.X, pressed(near, near_offset, 0.9 * hair), "a hair apart, pressed closer"));
+  EXPECT_TRUE(guard_agrees(near, near.X, pressed(near, near_offset, hair + 0.003, true), "a hair apart, bent through"));
+  const auto [far, far_offset] = stacked(2 * gauss::kStartMargin);
+  EXPECT_TRUE(guard_agrees(far, far.X, pressed(far, far_offset, 2 * gauss::kStartMargin - 0.5 * gauss::kContactMargin),
+                           "farther apart, pressed within the margin"));
 }
 
 // --- Flat patches: the pairs inside a node of the hierarchy whose faces all face one way. ---

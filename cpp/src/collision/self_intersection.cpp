@@ -195,7 +195,7 @@ bool SelfIntersectionGuard::in_contact(int f, int g, const std::vector<Vector3d>
   if (shared >= 2 || (shared == 1 && flat_star_[corner])) return false;
   Triangle a, b;
   arrange(fa, fb, X, a, b);
-  return triangles_closer_than(a, b, shared, kContactMargin);
+  return triangles_closer_than(a, b, shared, margin_);
 }
 
 const std::vector<uint64_t>& SelfIntersectionGuard::contacts(const std::vector<Vector3d>& X, bool skip_allowed) {
@@ -221,7 +221,7 @@ const std::vector<uint64_t>& SelfIntersectionGuard::contacts(const std::vector<V
   if (!candidates_hold(X) && !find_candidates(X)) {
     // The vertices move too far for candidates to last: one search of the tree, which leaves out
     // the pairs inside flat patches (face_bvh.h), most of a fast-moving surface's pairs.
-    bvh_.refit(X, 0.5 * kContactMargin);
+    bvh_.refit(X, 0.5 * margin_);
     bvh_.for_overlapping_pairs([&](int, int f, int g) {
       if (!share_corner(f, g)) test(f, g);
     }, true);
@@ -265,7 +265,7 @@ bool SelfIntersectionGuard::candidates_hold(const std::vector<Vector3d>& X) {
     }
   }
   if (static_cast<double>(moved_faces_.size()) > kMostMovedFaces * static_cast<double>(topo.faces.size())) return false;
-  bvh_.refit_boxes(X, 0.5 * kContactMargin);
+  bvh_.refit_boxes(X, 0.5 * margin_);
   return true;
 }
 
@@ -276,7 +276,7 @@ bool SelfIntersectionGuard::find_candidates(const std::vector<Vector3d>& X) {
   moved_faces_.clear();
   const double reach = kCandidateReach * mean_edge_;
   if (kStagesAhead * stage_move_ > reach) return false;
-  bvh_.refit_boxes(X, 0.5 * kContactMargin + reach);
+  bvh_.refit_boxes(X, 0.5 * margin_ + reach);
   // Each task of the search fills a small buffer of its own and moves it into candidates_ when full,
   // at a place it claims: no lock, and the kept list grows only past its largest size so far.
   const int tasks = bvh_.num_tasks();
@@ -302,13 +302,13 @@ bool SelfIntersectionGuard::find_candidates(const std::vector<Vector3d>& X) {
   num_candidates_ = claimed;
   candidates_at_ = X;
   candidate_reach_ = reach;
-  bvh_.refit_boxes(X, 0.5 * kContactMargin);
+  bvh_.refit_boxes(X, 0.5 * margin_);
   return true;
 }
 
 const std::vector<uint64_t>& SelfIntersectionGuard::contacts_of(const std::vector<int>& faces,
                                                                 const std::vector<Vector3d>& X) {
-  bvh_.refit_faces(faces, X, 0.5 * kContactMargin);
+  bvh_.refit_faces(faces, X, 0.5 * margin_);
   find_flat_stars(X, &faces);
   found_.clear();
   parallel::for_each(static_cast<int>(faces.size()), kMinParallelFaces, [&](int i) {
@@ -372,7 +372,10 @@ void SelfIntersectionGuard::start_from(const std::vector<Vector3d>& X) {
   slid_.clear();
   candidate_reach_ = -1;
   stage_move_ = 0;
+  margin_ = kStartMargin;
   allowed_ = contacts(X, false);
+  margin_ = kContactMargin;
+  candidate_reach_ = -1;  // the candidates' boxes were grown by the start's margin
   crossing_.clear();
   for (uint64_t key : allowed_) {
     Triangle a, b;

@@ -55,6 +55,11 @@ namespace gauss {
 // frame, whose longest bounding-box side is 1: 1e-4 is 0.01% of the mesh's size, a thousand times
 // float32's rounding there, and well below the edge lengths of meshes up to millions of faces.
 inline constexpr double kContactMargin = 1e-4;
+// Pairs closer than this at the start count as touching there: allowed to touch, never to cross. A
+// scan may hold sheets a hair beyond kContactMargin apart from the start (the Stanford bunny's
+// original .ply: two faces 1.15e-4 apart), which a style moves within the margin without ever
+// crossing; with the start's own margin the guard held such a run back for good (docs/quality.md).
+inline constexpr double kStartMargin = 2 * kContactMargin;
 // The longest move of a vertex checked at once (normalized frame): a longer step or pin move (a
 // handle dragged far in one go) is checked in stages, so that it cannot jump through a part thicker
 // than this. 2% of the mesh's size, because smaller stages multiply the guard's cost on a strong
@@ -75,7 +80,7 @@ class SelfIntersectionGuard {
   // positions the hierarchy is built on (the rest mesh).
   SelfIntersectionGuard(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& X0);
 
-  // Takes the pairs in contact at X (#V by 3, normalized frame) as the start: those that cross may
+  // Takes the pairs in contact at X (#V by 3, normalized frame; closer than kStartMargin) as the start: those that cross may
   // go on crossing (a mesh that already intersects keeps those pairs), those that only touch must
   // never cross, and every other pair must never come into contact.
   void start_from(const std::vector<Eigen::Vector3d>& X);
@@ -192,6 +197,7 @@ class SelfIntersectionGuard {
   int last_held_ = 0;
   bool last_staged_ = false;  // the last limit() took stages: its vertices are held_in_any_, else held_
   double denied_ = 0;
+  double margin_ = kContactMargin;  // kStartMargin while start_from() finds the pairs it allows
 };
 
 }  // namespace gauss
