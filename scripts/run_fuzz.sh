@@ -9,9 +9,13 @@
 # A failing input is written to BUILD_DIR/artifacts/. Fix the bug, then keep the input as
 # tests/fuzz/regressions/<short-name> (ctest replays it as well, via gauss_tests).
 #
-# usage: scripts/run_fuzz.sh [SECONDS=60] [BUILD_DIR=<repo>/build-fuzz]
+# usage: scripts/run_fuzz.sh [--build-only] [SECONDS=60] [BUILD_DIR=<repo>/build-fuzz]
+# --build-only: configure and build the harness, run nothing (the test command builds early, beside
+# other parts).
 set -euo pipefail
 
+build_only=0
+if [ "${1:-}" = --build-only ]; then build_only=1; shift; fi
 seconds="${1:-60}"
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${2:-$repo/build-fuzz}"
@@ -20,6 +24,7 @@ jobs="${GAUSS_JOBS:-2}"
 source "$repo/scripts/sanitizer_tree.sh"
 configure_sanitizer_tree "$build" -DGAUSS_BUILD_FUZZER=ON -DGAUSS_BUILD_TESTS=OFF
 cmake --build "$build" --target fuzz_solver -j "$jobs"
+[ "$build_only" = 0 ] || exit 0
 fuzzer="$build/tests/fuzz/fuzz_solver"
 
 export OMP_NUM_THREADS=2

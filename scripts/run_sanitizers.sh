@@ -3,9 +3,12 @@
 # clang tree of their own (scripts/sanitizer_tree.sh) and runs them through ctest with the solver on 2
 # threads. Exits non-zero on any sanitizer report or test failure.
 #
-# usage: scripts/run_sanitizers.sh [BUILD_DIR]     (default: <repo>/build-asan; incremental)
+# usage: scripts/run_sanitizers.sh [--build-only] [BUILD_DIR]     (default: <repo>/build-asan; incremental)
+# --build-only: configure and build, run nothing (the test command builds early, beside other parts).
 set -euo pipefail
 
+build_only=0
+if [ "${1:-}" = --build-only ]; then build_only=1; shift; fi
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$repo/build-asan}"
 jobs="${GAUSS_JOBS:-2}"
@@ -13,6 +16,7 @@ jobs="${GAUSS_JOBS:-2}"
 source "$repo/scripts/sanitizer_tree.sh"
 configure_sanitizer_tree "$build" -DGAUSS_BUILD_TESTS=ON
 cmake --build "$build" --target gauss_tests -j "$jobs"
+[ "$build_only" = 0 ] || exit 0
 
 # Every report is fatal (the build adds -fno-sanitize-recover=all; ASan and LSan abort or exit non-zero
 # on their own). The thread pool (cpp/src/util/parallel.cpp) is reachable from a global, so LSan has

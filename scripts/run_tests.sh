@@ -29,6 +29,20 @@ bash scripts/build.sh build || exit 1
 # The slow C++ cases (tests/cpp/slow_tests.txt), which the fast tier leaves to the full run.
 source scripts/slow_cpp_tests.sh
 
+# The last three parts' own trees (the cross check's, with its packages; the sanitizer tree; the fuzzing
+# tree) are built from here on at the lowest priority: the parts until then leave one core idle much of
+# the time (one test at a time, one Blender), and a nice-19 build takes only what they leave. Each part
+# still builds (incrementally) and reports its own build's failure; this lane's log is only a record.
+if [ $fast -eq 0 ]; then
+  prebuild_log="$PWD/build/prebuild.log"
+  (start=$SECONDS
+   nice -n 19 bash scripts/cross_check.sh --ci --build-only
+   nice -n 19 bash scripts/run_sanitizers.sh --build-only
+   nice -n 19 bash scripts/run_fuzz.sh --build-only
+   echo "prebuild lane: $((SECONDS - start)) s") > "$prebuild_log" 2>&1 &
+  prebuild_pid=$!
+fi
+
 results=()
 failed=0
 run_part() {  # name, command...
@@ -71,6 +85,8 @@ if [ $fast -eq 0 ]; then
   cat "$windowed_log"
   results+=("$(cat "$windowed_log.result")")
   [[ "${results[-1]}" == PASS* ]] || failed=$((failed + 1))
+  wait "$prebuild_pid"  # its trees are the next parts' (two builds of one tree at once would clash)
+  tail -n 1 "$prebuild_log"
   run_part "Windows and macOS cross check (MinGW + wine, zig)" bash scripts/cross_check.sh --ci
   run_part "C++ tests under ASan+UBSan" bash scripts/run_sanitizers.sh
   run_part "libFuzzer (60 s)" bash scripts/run_fuzz.sh 60
