@@ -38,16 +38,18 @@ set -euo pipefail
 # only in CPython's headers; the full run builds every one).
 # --ci: CI's budget: --newest-python, and no macOS test program (it cannot run here; what ships to macOS,
 # the modules, is built and inspected all the same, and the Windows test program still runs under wine).
+# --install-only: the Debian packages and zig, nothing built.
 # --build-only: what the other options ask for is installed and built, nothing run or inspected (the test
-# command builds it early, beside parts that leave a core idle; the check itself then finds it built).
-only_modules=0 newest_only=0 macos_tests=1 build_only=0
+# command installs first, then builds early beside other parts; the check itself then finds it built).
+only_modules=0 newest_only=0 macos_tests=1 build_only=0 install_only=0
 for arg in "$@"; do
   case "$arg" in
     --modules) only_modules=1 ;;
     --newest-python) newest_only=1 ;;
     --ci) newest_only=1 macos_tests=0 ;;
     --build-only) build_only=1 ;;
-    *) echo "usage: bash scripts/cross_check.sh [--modules] [--newest-python] [--ci] [--build-only]" >&2; exit 2 ;;
+    --install-only) install_only=1 ;;
+    *) echo "usage: bash scripts/cross_check.sh [--modules] [--newest-python] [--ci] [--install-only | --build-only]" >&2; exit 2 ;;
   esac
 done
 cd "$(dirname "$0")/.."
@@ -115,6 +117,7 @@ for arch in aarch64 x86_64; do
   done
 done
 export ZIG_GLOBAL_CACHE_DIR="$cache/zig-cache" ZIG_LOCAL_CACHE_DIR="$cache/zig-cache"
+[ "$install_only" = 0 ] || exit 0
 
 # ccache keeps the objects outside the work tree: the module trees compile the same library as the test trees.
 launcher=()

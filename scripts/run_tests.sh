@@ -29,18 +29,23 @@ bash scripts/build.sh build || exit 1
 # The slow C++ cases (tests/cpp/slow_tests.txt), which the fast tier leaves to the full run.
 source scripts/slow_cpp_tests.sh
 
-# The last three parts' own trees (the cross check's, with its packages; the sanitizer tree; the fuzzing
-# tree) are built from here on at the lowest priority: the parts until then leave one core idle much of
-# the time (one test at a time, one Blender), and a nice-19 build takes only what they leave. Each part
-# still builds (incrementally) and reports its own build's failure; this lane's log is only a record.
+# The last three parts' own trees (the cross check's, the sanitizer tree, the fuzzing tree) are built
+# from here on at the lowest priority, a lane beside the parts before them: those run one test, one
+# Blender or one wheel build at a time and often leave a core idle, and a nice-19 build takes only what
+# they leave. The cross check's Debian packages are installed first, here, so that no apt-get runs
+# beside the tests. Each part still builds (incrementally) and reports its own build's failure; the
+# lane says which of its builds failed. In a session of its own (setsid), so that an interrupted run
+# stops it too instead of leaving it building.
 if [ $fast -eq 0 ]; then
+  bash scripts/cross_check.sh --install-only || exit 1
   prebuild_log="$PWD/build/prebuild.log"
-  (start=$SECONDS
-   nice -n 19 bash scripts/cross_check.sh --ci --build-only
-   nice -n 19 bash scripts/run_sanitizers.sh --build-only
-   nice -n 19 bash scripts/run_fuzz.sh --build-only
-   echo "prebuild lane: $((SECONDS - start)) s") > "$prebuild_log" 2>&1 &
+  setsid bash -c 'start=$SECONDS failed=()
+    nice -n 19 bash scripts/cross_check.sh --ci --build-only || failed+=(cross_check.sh)
+    nice -n 19 bash scripts/run_sanitizers.sh --build-only || failed+=(run_sanitizers.sh)
+    nice -n 19 bash scripts/run_fuzz.sh --build-only || failed+=(run_fuzz.sh)
+    echo "prebuild lane: $((SECONDS - start)) s${failed:+, failed: ${failed[*]}}"' > "$prebuild_log" 2>&1 &
   prebuild_pid=$!
+  trap 'kill -- -"$prebuild_pid" 2> /dev/null' EXIT
 fi
 
 results=()
@@ -86,7 +91,7 @@ if [ $fast -eq 0 ]; then
   results+=("$(cat "$windowed_log.result")")
   [[ "${results[-1]}" == PASS* ]] || failed=$((failed + 1))
   wait "$prebuild_pid"  # its trees are the next parts' (two builds of one tree at once would clash)
-  tail -n 1 "$prebuild_log"
+  echo; tail -n 1 "$prebuild_log"; echo "(its log: $prebuild_log)"
   run_part "Windows and macOS cross check (MinGW + wine, zig)" bash scripts/cross_check.sh --ci
   run_part "C++ tests under ASan+UBSan" bash scripts/run_sanitizers.sh
   run_part "libFuzzer (60 s)" bash scripts/run_fuzz.sh 60

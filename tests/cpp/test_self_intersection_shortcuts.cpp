@@ -121,7 +121,8 @@ std::vector<uint64_t> contacts(const Faces& F, const Points& X, double margin = 
   return out;
 }
 
-// The start's rules: a pair in contact at the start (closer than kStartMargin) may stay so (if it only touched there, it may not
+// The start's rules: a pair in contact at the start (closer than kStartMargin, but kContactMargin next
+// to a crossing) may stay so (if it only touched there, it may not
 // cross), a pair next to a crossing of the start may cross (the crossing slides on), any other pair
 // in contact is new.
 struct Start {
@@ -129,14 +130,23 @@ struct Start {
   std::vector<uint64_t> touching, crossing;
   std::vector<std::vector<int>> faces_at;  // #V: the faces around each vertex
 
-  Start(const Faces& faces, const Points& S) : F(faces), touching(contacts(faces, S, gauss::kStartMargin)) {
-    for (uint64_t k : touching)
+  Start(const Faces& faces, const Points& S) : F(faces) {
+    const std::vector<uint64_t> near = contacts(faces, S, gauss::kStartMargin);
+    for (uint64_t k : near)
       if (crosses(F, S, static_cast<int>(k >> 32), static_cast<int>(k & 0xffffffffu))) crossing.push_back(k);
     int nV = 0;
     for (const auto& f : F) nV = std::max({nV, f[0] + 1, f[1] + 1, f[2] + 1});
     faces_at.resize(nV);
     for (int f = 0; f < static_cast<int>(F.size()); ++f)
       for (int v : F[f]) faces_at[v].push_back(f);
+    // Only a hair apart (within kStartMargin, not kContactMargin) and next to a crossing: not touching,
+    // a pair the crossing may slide onto.
+    for (uint64_t k : near) {
+      const int f = static_cast<int>(k >> 32), g = static_cast<int>(k & 0xffffffffu);
+      if (std::binary_search(crossing.begin(), crossing.end(), k) || in_contact(F, S, f, g, gauss::kContactMargin) ||
+          !next_to_crossing(f, g))
+        touching.push_back(k);
+    }
   }
   bool next_to_crossing(int f, int g) const {
     for (int v : F[f])
@@ -428,8 +438,9 @@ TEST(SelfIntersectionShortcuts, DuplicatedVerticesTouchAtTheStartAndMayNotCross)
 TEST(SelfIntersectionShortcuts, SheetsAHairApartAtTheStartMayTouchButNotCross) {
   // Two sheets stacked a gap apart (a scan's overlapping sheets): between the contact margin and the
   // start's margin they count as touching from the start, so pressing them closer holds nothing
-  // back; pressing them through each other is held. Farther apart at the start, pressing them within
-  // the contact margin is a new contact and is held.
+  // back; pressing them through each other is held. Farther apart at the start, pressing them a hair
+  // apart holds nothing (the start's margin is not the steps'), within the contact margin is a new
+  // contact and is held.
   const auto stacked = [](double gap) {
     Mesh m = sheet(4, 0.03);
     const int offset = static_cast<int>(m.X.size());
@@ -451,6 +462,8 @@ TEST(SelfIntersectionShortcuts, SheetsAHairApartAtTheStartMayTouchButNotCross) {
   EXPECT_FALSE(guard_agrees(near, near.X, pressed(near, near_offset, 0.9 * hair), "a hair apart, pressed closer"));
   EXPECT_TRUE(guard_agrees(near, near.X, pressed(near, near_offset, hair + 0.003, true), "a hair apart, bent through"));
   const auto [far, far_offset] = stacked(2 * gauss::kStartMargin);
+  EXPECT_FALSE(guard_agrees(far, far.X, pressed(far, far_offset, 2 * gauss::kStartMargin - hair),
+                            "farther apart, pressed to a hair apart (the start's margin is the start's alone)"));
   EXPECT_TRUE(guard_agrees(far, far.X, pressed(far, far_offset, 2 * gauss::kStartMargin - 0.5 * gauss::kContactMargin),
                            "farther apart, pressed within the margin"));
 }

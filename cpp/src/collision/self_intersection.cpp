@@ -161,7 +161,11 @@ void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, cons
         winding += std::atan2(turn / n.norm(), pa.dot(pb));
         continue;
       }
-      if (i == begin) ray = ia, m = n.cross(a);
+      if (i == begin) {  // starts on the ray, and covers it where it turns the right way (turn > 0 here)
+        ray = ia, m = n.cross(a);
+        ++covering;
+        continue;
+      }
       covering += ib != ray && (ia == ray || a.dot(m) <= 0) && b.dot(m) > 0;
     }
     flat_star_[v] = flat && star_kind_[v] != kNeverFlat && (star_kind_[v] == kClosedStar ? covering == 1 : winding < kTwoPi);
@@ -187,7 +191,7 @@ int64_t SelfIntersectionGuard::bytes_needed(int64_t num_vertices, int64_t num_fa
          (4 + 4 + 16 * 8) * num_faces;
 }
 
-bool SelfIntersectionGuard::in_contact(int f, int g, const std::vector<Vector3d>& X) const {
+bool SelfIntersectionGuard::in_contact(int f, int g, const std::vector<Vector3d>& X, double margin) const {
   const std::array<int, 3>&fa = topo_->faces[f], &fb = topo_->faces[g];
   int shared = 0, corner = -1;
   for (int i : fa)
@@ -195,14 +199,15 @@ bool SelfIntersectionGuard::in_contact(int f, int g, const std::vector<Vector3d>
   if (shared >= 2 || (shared == 1 && flat_star_[corner])) return false;
   Triangle a, b;
   arrange(fa, fb, X, a, b);
-  return triangles_closer_than(a, b, shared, margin_);
+  return triangles_closer_than(a, b, shared, margin);
 }
 
-const std::vector<uint64_t>& SelfIntersectionGuard::contacts(const std::vector<Vector3d>& X, bool skip_allowed) {
+const std::vector<uint64_t>& SelfIntersectionGuard::contacts(const std::vector<Vector3d>& X, bool skip_allowed,
+                                                            double margin) {
   find_flat_stars(X, nullptr);
   found_.clear();
   const auto test = [&](int f, int g) {
-    if (!in_contact(f, g, X)) return;
+    if (!in_contact(f, g, X, margin)) return;
     const uint64_t key = pair_key(f, g);
     if (skip_allowed && allowed(key, f, g, X)) return;
     std::lock_guard<std::mutex> lock(found_mutex_);  // contacts are few: one lock suffices
@@ -218,10 +223,10 @@ const std::vector<uint64_t>& SelfIntersectionGuard::contacts(const std::vector<V
       for (int j = i + 1; j < end; ++j) test(topo.vertex_corners[i] / 3, topo.vertex_corners[j] / 3);
   });
   // Pairs sharing none whose boxes overlap.
-  if (!candidates_hold(X) && !find_candidates(X)) {
+  if (!candidates_hold(X, margin) && !find_candidates(X, margin)) {
     // The vertices move too far for candidates to last: one search of the tree, which leaves out
     // the pairs inside flat patches (face_bvh.h), most of a fast-moving surface's pairs.
-    bvh_.refit(X, 0.5 * margin_);
+    bvh_.refit(X, 0.5 * margin);
     bvh_.for_overlapping_pairs([&](int, int f, int g) {
       if (!share_corner(f, g)) test(f, g);
     }, true);
@@ -250,7 +255,7 @@ bool SelfIntersectionGuard::share_corner(int f, int g) const {
   return false;
 }
 
-bool SelfIntersectionGuard::candidates_hold(const std::vector<Vector3d>& X) {
+bool SelfIntersectionGuard::candidates_hold(const std::vector<Vector3d>& X, double margin) {
   if (candidate_reach_ < 0) return false;
   const MeshTopology& topo = *topo_;
   moved_faces_.clear();
@@ -265,18 +270,18 @@ bool SelfIntersectionGuard::candidates_hold(const std::vector<Vector3d>& X) {
     }
   }
   if (static_cast<double>(moved_faces_.size()) > kMostMovedFaces * static_cast<double>(topo.faces.size())) return false;
-  bvh_.refit_boxes(X, 0.5 * margin_);
+  bvh_.refit_boxes(X, 0.5 * margin);
   return true;
 }
 
-bool SelfIntersectionGuard::find_candidates(const std::vector<Vector3d>& X) {
+bool SelfIntersectionGuard::find_candidates(const std::vector<Vector3d>& X, double margin) {
   // Only worth it if most vertices stay within the reach for a few stages; on a strong style's first
   // steps they do not.
   candidate_reach_ = -1;
   moved_faces_.clear();
   const double reach = kCandidateReach * mean_edge_;
   if (kStagesAhead * stage_move_ > reach) return false;
-  bvh_.refit_boxes(X, 0.5 * margin_ + reach);
+  bvh_.refit_boxes(X, 0.5 * margin + reach);
   // Each task of the search fills a small buffer of its own and moves it into candidates_ when full,
   // at a place it claims: no lock, and the kept list grows only past its largest size so far.
   const int tasks = bvh_.num_tasks();
@@ -297,23 +302,23 @@ bool SelfIntersectionGuard::find_candidates(const std::vector<Vector3d>& X) {
   for (int t = 0; t < tasks; ++t) flush(t);
   if (claimed > candidates_.size()) {  // too many for the list: again, with room for a quarter more
     candidates_.resize(claimed + claimed / 4);
-    return find_candidates(X);
+    return find_candidates(X, margin);
   }
   num_candidates_ = claimed;
   candidates_at_ = X;
   candidate_reach_ = reach;
-  bvh_.refit_boxes(X, 0.5 * margin_);
+  bvh_.refit_boxes(X, 0.5 * margin);
   return true;
 }
 
 const std::vector<uint64_t>& SelfIntersectionGuard::contacts_of(const std::vector<int>& faces,
                                                                 const std::vector<Vector3d>& X) {
-  bvh_.refit_faces(faces, X, 0.5 * margin_);
+  bvh_.refit_faces(faces, X, 0.5 * kContactMargin);
   find_flat_stars(X, &faces);
   found_.clear();
   parallel::for_each(static_cast<int>(faces.size()), kMinParallelFaces, [&](int i) {
     bvh_.pairs_with(faces[i], [&](int f, int g) {
-      if (!in_contact(f, g, X)) return;
+      if (!in_contact(f, g, X, kContactMargin)) return;
       const uint64_t key = pair_key(f, g);
       if (allowed(key, f, g, X)) return;
       std::lock_guard<std::mutex> lock(found_mutex_);
@@ -372,16 +377,22 @@ void SelfIntersectionGuard::start_from(const std::vector<Vector3d>& X) {
   slid_.clear();
   candidate_reach_ = -1;
   stage_move_ = 0;
-  margin_ = kStartMargin;
-  allowed_ = contacts(X, false);
-  margin_ = kContactMargin;
-  candidate_reach_ = -1;  // the candidates' boxes were grown by the start's margin
+  const std::vector<uint64_t>& near = contacts(X, false, kStartMargin);
   crossing_.clear();
-  for (uint64_t key : allowed_) {
+  for (uint64_t key : near) {
     Triangle a, b;
     const int shared =
         arrange(topo_->faces[key >> 32], topo_->faces[static_cast<int>(key & 0xffffffffu)], X, a, b);
     if (triangles_cross(a, b, shared)) crossing_.push_back(key);
+  }
+  // A pair only a hair apart (within kStartMargin, not kContactMargin) touches from the start where no
+  // crossing is next to it; next to one it stays a pair the crossing may slide onto, as any other there.
+  allowed_.clear();
+  for (uint64_t key : near) {
+    const int f = static_cast<int>(key >> 32), g = static_cast<int>(key & 0xffffffffu);
+    if (std::binary_search(crossing_.begin(), crossing_.end(), key) || in_contact(f, g, X, kContactMargin) ||
+        !next_to_crossing(f, g))
+      allowed_.push_back(key);
   }
 }
 
@@ -463,7 +474,7 @@ void SelfIntersectionGuard::limit_stage(const std::vector<Vector3d>& safe, std::
   constexpr float kSmallestFraction = 1.0f / 8;
   held_.clear();
   // found_ is refilled at the end of each round, after the round has read it.
-  const std::vector<uint64_t>& found = contacts(X, true);
+  const std::vector<uint64_t>& found = contacts(X, true, kContactMargin);
   for (int round = 0; !found.empty(); ++round) {
     if (round == 0) candidate_ = X;
     const uint32_t stamp = ++stamp_count_;  // each vertex steps back once per round

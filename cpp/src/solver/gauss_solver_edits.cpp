@@ -206,9 +206,12 @@ void GaussSolver::set_avoid_self_intersections(bool on) {
     const int64_t nV = topo_.num_vertices, nF = static_cast<int64_t>(topo_.faces.size());
     check_memory(SelfIntersectionGuard::bytes_needed(nV, nF) + 24 * nV + ContactSprings::bytes_needed(nV),
                  "the self-intersection guard for " + std::to_string(nV) + " vertices");
-    guard_ = std::make_unique<SelfIntersectionGuard>(topo_, rest_);
+    // Made whole before it is kept: a start that runs out of memory leaves the solver unguarded, not
+    // guarded from half a start.
+    auto guard = std::make_unique<SelfIntersectionGuard>(topo_, rest_);
+    guard->start_from(X_);
     safe_.resize(topo_.num_vertices);
-    guard_->start_from(X_);
+    guard_ = std::move(guard);
   } else {
     guard_.reset();
     std::vector<Vector3d>().swap(safe_);

@@ -12,9 +12,9 @@
 // the vertices the guard held back: the solver gives them springs there (contact_springs.h), solved
 // with the same factor. A step of Algorithm 1 maps the vertices from a
 // state S, free of new crossings, to a candidate C. The guard refits a bounding-volume hierarchy
-// (face_bvh.h) to C and tests the faces whose boxes overlap. Where two faces cross, or come closer
-// than kContactMargin without sharing a corner, and did not already at the start, their corners first
-// slide: each keeps its step without the part that goes towards the other face's plane (at S; again
+// (face_bvh.h) to C and tests the faces whose boxes overlap. Where two faces cross (and did not at the
+// start), or come closer than kContactMargin without sharing a corner (and were not within kStartMargin
+// at the start), their corners first slide: each keeps its step without the part that goes towards the other face's plane (at S; again
 // for a second face it then meets), so a surface pressed onto another goes on moving along it and the
 // style goes on acting there. Where that still touches, they are moved back towards S (x = S + t (A -
 // S), A the slid candidate, t halved per round, then 0), and the faces around them are tested again,
@@ -55,10 +55,11 @@ namespace gauss {
 // frame, whose longest bounding-box side is 1: 1e-4 is 0.01% of the mesh's size, a thousand times
 // float32's rounding there, and well below the edge lengths of meshes up to millions of faces.
 inline constexpr double kContactMargin = 1e-4;
-// Pairs closer than this at the start count as touching there: allowed to touch, never to cross. A
-// scan may hold sheets a hair beyond kContactMargin apart from the start (the Stanford bunny's
-// original .ply: two faces 1.15e-4 apart), which a style moves within the margin without ever
-// crossing; with the start's own margin the guard held such a run back for good (docs/quality.md).
+// Pairs closer than this at the start count as touching there, allowed to touch but never to cross,
+// unless they are next to a crossing of the start (those stay pairs the crossing may slide onto, as
+// with kContactMargin alone). A scan may hold sheets a hair beyond kContactMargin apart from the start
+// (the Stanford bunny's original .ply: two faces 1.15e-4 apart), which a style moves within the margin
+// without ever crossing; with the steps' margin at the start the guard held such a run back for good.
 inline constexpr double kStartMargin = 2 * kContactMargin;
 // The longest move of a vertex checked at once (normalized frame): a longer step or pin move (a
 // handle dragged far in one go) is checked in stages, so that it cannot jump through a part thicker
@@ -80,7 +81,7 @@ class SelfIntersectionGuard {
   // positions the hierarchy is built on (the rest mesh).
   SelfIntersectionGuard(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& X0);
 
-  // Takes the pairs in contact at X (#V by 3, normalized frame; closer than kStartMargin) as the start: those that cross may
+  // Takes the pairs in contact at X (#V by 3, normalized frame; see kStartMargin) as the start: those that cross may
   // go on crossing (a mesh that already intersects keeps those pairs), those that only touch must
   // never cross, and every other pair must never come into contact.
   void start_from(const std::vector<Eigen::Vector3d>& X);
@@ -117,9 +118,10 @@ class SelfIntersectionGuard {
   // times (on different contacts), then its slid step is halved.
   static constexpr float kLastSlide = -2.0f;
   void take_slid_pairs();
-  // Pairs (f < g, as f * 2^32 + g) in contact at X, without the allowed ones if skip_allowed; sorted.
-  // Into found_ (reused: a step allocates nothing once it has grown), which is returned.
-  const std::vector<uint64_t>& contacts(const std::vector<Eigen::Vector3d>& X, bool skip_allowed);
+  // Pairs (f < g, as f * 2^32 + g) in contact at X (closer than margin: kContactMargin, or the start's
+  // kStartMargin), without the allowed ones if skip_allowed; sorted. Into found_ (reused: a step
+  // allocates nothing once it has grown), which is returned.
+  const std::vector<uint64_t>& contacts(const std::vector<Eigen::Vector3d>& X, bool skip_allowed, double margin);
   // The pairs sharing no corner whose boxes may overlap (the first num_candidates_ of candidates_):
   // those whose boxes, grown by candidate_reach_ more, overlapped at candidates_at_. Their boxes can
   // only overlap now if a corner moved further than that (per coordinate, as the boxes grow): the
@@ -129,8 +131,8 @@ class SelfIntersectionGuard {
   // serve; find_candidates() finds new ones, or says that they would not last (then contacts()
   // searches the tree for the stage alone, leaving out the pairs inside flat patches as face_bvh.h
   // allows; the candidates hold every pair).
-  bool candidates_hold(const std::vector<Eigen::Vector3d>& X);
-  bool find_candidates(const std::vector<Eigen::Vector3d>& X);
+  bool candidates_hold(const std::vector<Eigen::Vector3d>& X, double margin);
+  bool find_candidates(const std::vector<Eigen::Vector3d>& X, double margin);
   bool share_corner(int f, int g) const;
   // candidate_reach_ in mean edge lengths at the rest shape: a step late in a run moves 99% of the
   // vertices by less than a tenth of an edge (measured: docs/performance.md#the-guards-cost).
@@ -148,7 +150,7 @@ class SelfIntersectionGuard {
   // those of the given faces' corners.
   void find_flat_stars(const std::vector<Eigen::Vector3d>& X, const std::vector<int>* faces);
   // Whether faces f and g are in contact at X (flat_star_ up to date for their corners).
-  bool in_contact(int f, int g, const std::vector<Eigen::Vector3d>& X) const;
+  bool in_contact(int f, int g, const std::vector<Eigen::Vector3d>& X, double margin) const;
   // The contacts, not allowed, of the given faces with any other (sorted, each once), into found_.
   const std::vector<uint64_t>& contacts_of(const std::vector<int>& faces, const std::vector<Eigen::Vector3d>& X);
 
@@ -197,7 +199,6 @@ class SelfIntersectionGuard {
   int last_held_ = 0;
   bool last_staged_ = false;  // the last limit() took stages: its vertices are held_in_any_, else held_
   double denied_ = 0;
-  double margin_ = kContactMargin;  // kStartMargin while start_from() finds the pairs it allows
 };
 
 }  // namespace gauss
