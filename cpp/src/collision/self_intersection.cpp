@@ -420,20 +420,34 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
     move_.resize(nV);
     stage_start_.resize(nV);
     ever_held_.assign(nV, 0);
+    own_stages_.resize(nV);
   }
   whole_ = X;
-  for (int v = 0; v < nV; ++v) move_[v] = (X[v] - safe[v]) / stages;
+  // Each vertex in as many stages as its own move needs: a vertex that moves less than kStageMove
+  // makes its whole move in the first stage, and the later stages move only the few that go further
+  // (a folding part swinging at every step), so only their faces are checked there, not the mesh.
+  for (int v = 0; v < nV; ++v) {
+    own_stages_[v] = static_cast<int>(
+        std::min<double>(stages, std::max(1.0, std::ceil((X[v] - safe[v]).cwiseAbs().maxCoeff() / kStageMove))));
+    move_[v] = (X[v] - safe[v]) / own_stages_[v];
+  }
   stage_start_ = safe;
   held_in_any_.clear();
   for (int stage = 0; stage < stages; ++stage) {
-    // The sum of the stages' moves is the step only up to rounding: the last stage aims at the step's
+    // The sum of a vertex's stages is its step only up to rounding: its last stage aims at the step's
     // own result, so that a vertex never held ends exactly where it would without the guard.
-    if (stage + 1 < stages) {
-      for (int v = 0; v < nV; ++v) X[v] = stage_start_[v] + move_[v];
-    } else {
-      for (int v = 0; v < nV; ++v) X[v] = ever_held_[v] ? stage_start_[v] + move_[v] : whole_[v];
+    stage_faces_.clear();
+    const uint32_t stamp = ++moved_stamp_count_;
+    for (int v = 0; v < nV; ++v) {
+      if (own_stages_[v] <= stage) continue;
+      X[v] = stage + 1 < own_stages_[v] || ever_held_[v] ? Vector3d(stage_start_[v] + move_[v]) : whole_[v];
+      if (stage == 0) continue;
+      for (int i = topo_->vertex_corner_start[v]; i < topo_->vertex_corner_start[v + 1]; ++i) {
+        const int f = topo_->vertex_corners[i] / 3;
+        if (moved_stamp_[f] != stamp) moved_stamp_[f] = stamp, stage_faces_.push_back(f);
+      }
     }
-    limit_stage(stage_start_, X);
+    limit_stage(stage_start_, X, stage == 0 ? nullptr : &stage_faces_);
     for (int v : held_)
       if (!ever_held_[v]) ever_held_[v] = 1, held_in_any_.push_back(v);
     stage_start_ = X;
@@ -463,7 +477,8 @@ bool SelfIntersectionGuard::slide_along(int v, int other, const std::vector<Vect
   return true;
 }
 
-void SelfIntersectionGuard::limit_stage(const std::vector<Vector3d>& safe, std::vector<Vector3d>& X) {
+void SelfIntersectionGuard::limit_stage(const std::vector<Vector3d>& safe, std::vector<Vector3d>& X,
+                                        const std::vector<int>* moved) {
   const MeshTopology& topo = *topo_;
   // A held vertex first slides (slide_along), then its step is halved per round down to
   // kSmallestFraction, then taken back to `safe` outright. Only the corners of faces in a new contact
@@ -474,7 +489,7 @@ void SelfIntersectionGuard::limit_stage(const std::vector<Vector3d>& safe, std::
   constexpr float kSmallestFraction = 1.0f / 8;
   held_.clear();
   // found_ is refilled at the end of each round, after the round has read it.
-  const std::vector<uint64_t>& found = contacts(X, true, kContactMargin);
+  const std::vector<uint64_t>& found = moved == nullptr ? contacts(X, true, kContactMargin) : contacts_of(*moved, X);
   for (int round = 0; !found.empty(); ++round) {
     if (round == 0) candidate_ = X;
     const uint32_t stamp = ++stamp_count_;  // each vertex steps back once per round

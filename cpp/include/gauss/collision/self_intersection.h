@@ -103,8 +103,10 @@ class SelfIntersectionGuard {
   static int64_t bytes_needed(int64_t num_vertices, int64_t num_faces);
 
  private:
-  // One stage of limit(): a move from `safe` to X no longer than kStageMove.
-  void limit_stage(const std::vector<Eigen::Vector3d>& safe, std::vector<Eigen::Vector3d>& X);
+  // One stage of limit(): a move from `safe` to X no longer than kStageMove. moved: the faces around
+  // the vertices that moved, where only those did (a later stage), else null (every vertex may have).
+  void limit_stage(const std::vector<Eigen::Vector3d>& safe, std::vector<Eigen::Vector3d>& X,
+                   const std::vector<int>* moved = nullptr);
   // Whether a contact of this pair at X is one the start allows, or one a crossing slides into: f
   // and g each share a corner with the faces of a pair that crosses (or crossed) since the start.
   // Those are noted, and become allowed crossings at the end of limit() (take_slid_pairs).
@@ -196,6 +198,8 @@ class SelfIntersectionGuard {
   uint32_t star_stamp_count_ = 0;
   std::mutex found_mutex_;                // contacts() fills found_ from several threads
   std::vector<int> held_in_any_;          // a staged limit(): vertices held in some stage
+  std::vector<int> own_stages_;           // #V, a staged limit(): the stages of the vertex's own move
+  std::vector<int> stage_faces_;          // a staged limit(): the faces around the vertices a stage moves
   int last_held_ = 0;
   bool last_staged_ = false;  // the last limit() took stages: its vertices are held_in_any_, else held_
   double denied_ = 0;
