@@ -91,6 +91,7 @@ SelfIntersectionGuard::SelfIntersectionGuard(const MeshTopology& topo, const std
       step_fraction_(X0.size(), 1.0f),
       round_stamp_(X0.size(), 0),
       moved_stamp_(topo.faces.size(), 0),
+      of_stamp_(topo.faces.size(), 0),
       star_stamp_(X0.size(), 0) {
   // A star is one fan around its corner, closed or open, only if each of its edges has two faces
   // that run along it in opposite directions, but for the open fan's two boundary edges. Two fans
@@ -184,11 +185,11 @@ void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, cons
 }
 
 int64_t SelfIntersectionGuard::bytes_needed(int64_t num_vertices, int64_t num_faces) {
-  // Per vertex the buffers above; per face its stamp, its place in moved_faces_ and the candidate
+  // Per vertex the buffers above; per face its two stamps, its place in moved_faces_ and the candidate
   // pairs, about 6 per face on the armadillos (kCandidateReach), with room for twice that and the
   // list's growth.
   return FaceBvh::bytes_needed(num_faces) + (24 + 4 + 4 + 4 + 2 + 24 + 24 + 1 + 24 + 4 + 4 + 4) * num_vertices +
-         (4 + 4 + 16 * 8) * num_faces;
+         (4 + 4 + 4 + 16 * 8) * num_faces;
 }
 
 bool SelfIntersectionGuard::in_contact(int f, int g, const std::vector<Vector3d>& X, double margin) const {
@@ -316,8 +317,12 @@ const std::vector<uint64_t>& SelfIntersectionGuard::contacts_of(const std::vecto
   bvh_.refit_faces(faces, X, 0.5 * kContactMargin);
   find_flat_stars(X, &faces);
   found_.clear();
+  // A pair of two of these faces is tested from the lower one only.
+  const uint32_t stamp = ++of_stamp_count_;
+  for (int f : faces) of_stamp_[f] = stamp;
   parallel::for_each(static_cast<int>(faces.size()), kMinParallelFaces, [&](int i) {
     bvh_.pairs_with(faces[i], [&](int f, int g) {
+      if (g < f && of_stamp_[g] == stamp) return;
       if (!in_contact(f, g, X, kContactMargin)) return;
       const uint64_t key = pair_key(f, g);
       if (allowed(key, f, g, X)) return;
@@ -480,40 +485,56 @@ bool SelfIntersectionGuard::slide_along(int v, int other, const std::vector<Vect
 void SelfIntersectionGuard::limit_stage(const std::vector<Vector3d>& safe, std::vector<Vector3d>& X,
                                         const std::vector<int>* moved) {
   const MeshTopology& topo = *topo_;
-  // A held vertex first slides (slide_along), then its step is halved per round down to
+  // A held vertex first slides (slide_along), then its step is halved per step back down to
   // kSmallestFraction, then taken back to `safe` outright. Only the corners of faces in a new contact
   // step back, so the hold stays local: a pair whose six corners are all back at `safe` is as it was
   // there, where it was not in a new contact, so every round steps some vertex back or ends the loop
-  // (at most six times per vertex). No
-  // round count triggers a global rollback: that froze whole meshes (docs/quality.md).
+  // (at most six times per vertex). No round count triggers a global rollback: that froze whole
+  // meshes (docs/quality.md).
   constexpr float kSmallestFraction = 1.0f / 8;
   held_.clear();
   // found_ is refilled at the end of each round, after the round has read it.
   const std::vector<uint64_t>& found = moved == nullptr ? contacts(X, true, kContactMargin) : contacts_of(*moved, X);
+  // One step back for corner v of a face in contact with face `other`: false where v is at `safe` already.
+  const auto step_back = [&](int v, int other) {
+    float& t = step_fraction_[v];
+    if (t == 0.0f) return false;  // already at `safe`
+    if (t == 1.0f) held_.push_back(v), aim_[v] = candidate_[v];
+    if ((t == 1.0f || (t < 0.0f && t > kLastSlide)) && slide_along(v, other, safe)) {
+      t = t == 1.0f ? -1.0f : t - 1.0f;  // -1, -2, ...: slid once, twice, ...
+      X[v] = aim_[v];
+    } else {
+      t = t < 0.0f ? 0.5f : (t > kSmallestFraction ? 0.5f * t : 0.0f);
+      X[v] = safe[v] + static_cast<double>(t) * (aim_[v] - safe[v]);
+    }
+    for (int i = topo.vertex_corner_start[v]; i < topo.vertex_corner_start[v + 1]; ++i)
+      touched_.push_back(topo.vertex_corners[i] / 3);
+    return true;
+  };
   for (int round = 0; !found.empty(); ++round) {
     if (round == 0) candidate_ = X;
-    const uint32_t stamp = ++stamp_count_;  // each vertex steps back once per round
+    const uint32_t stamp = ++stamp_count_;
     touched_.clear();
+    // Each pair found is stepped back until it no longer touches (tested alone after each step back),
+    // or its corners are all at `safe`; then a search (contacts_of) looks for what the moves touched
+    // elsewhere: one search a round, not one per step back. A pair's first step back leaves out the
+    // corners another pair stepped back in this round already (a corner that slid along one face
+    // would only be halved by the next: a sheet pressed onto another then stopped sliding); where
+    // the pair still touches, its next steps back take all six.
     for (uint64_t key : found) {
-      for (int face : {static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu)}) {
-        for (int v : topo.faces[face]) {
-          if (round_stamp_[v] == stamp) continue;
-          round_stamp_[v] = stamp;
-          float& t = step_fraction_[v];
-          if (t == 0.0f) continue;  // already at `safe`
-          if (t == 1.0f) held_.push_back(v), aim_[v] = candidate_[v];
-          const int other = face == static_cast<int>(key >> 32) ? static_cast<int>(key & 0xffffffffu)
-                                                                 : static_cast<int>(key >> 32);
-          if ((t == 1.0f || (t < 0.0f && t > kLastSlide)) && slide_along(v, other, safe)) {
-            t = t == 1.0f ? -1.0f : t - 1.0f;  // -1, -2, ...: slid once, twice, ...
-            X[v] = aim_[v];
-          } else {
-            t = t < 0.0f ? 0.5f : (t > kSmallestFraction ? 0.5f * t : 0.0f);
-            X[v] = safe[v] + static_cast<double>(t) * (aim_[v] - safe[v]);
+      const int f = static_cast<int>(key >> 32), g = static_cast<int>(key & 0xffffffffu);
+      for (bool first = true; in_contact(f, g, X, kContactMargin) && !allowed(key, f, g, X); first = false) {
+        int corners[6], count = 0;
+        bool stepped = false;
+        for (int face : {f, g})
+          for (int v : topo.faces[face]) {
+            if (std::find(corners, corners + count, v) != corners + count) continue;  // a shared corner
+            corners[count++] = v;
+            if (first && round_stamp_[v] == stamp) continue;
+            round_stamp_[v] = stamp;
+            stepped = step_back(v, face == f ? g : f) || stepped;
           }
-          for (int i = topo.vertex_corner_start[v]; i < topo.vertex_corner_start[v + 1]; ++i)
-            touched_.push_back(topo.vertex_corners[i] / 3);
-        }
+        if (!stepped && !first) break;
       }
     }
     // Every corner of every contact is back at `safe` already: contacts that `safe` itself had (a

@@ -17,8 +17,9 @@
 // at the start), their corners first slide: each keeps its step without the part that goes towards the other face's plane (at S; again
 // for a second face it then meets), so a surface pressed onto another goes on moving along it and the
 // style goes on acting there. Where that still touches, they are moved back towards S (x = S + t (A -
-// S), A the slid candidate, t halved per round, then 0), and the faces around them are tested again,
-// until no new pair is left. Only the corners of faces in a new contact step back, so a hold stays where the contact is (a global rollback froze whole
+// S), A the slid candidate, t halved, then 0), the pair tested alone after each move until it no
+// longer touches; then the faces around the moved corners are searched again (a round), until no new
+// pair is left. Only the corners of faces in a new contact step back, so a hold stays where the contact is (a global rollback froze whole
 // meshes); at worst those corners are back at S, which has no new contact: a step can stop short,
 // never pass through.
 // A mesh that already crosses itself keeps its crossings, and they may slide on to the neighbouring
@@ -193,6 +194,8 @@ class SelfIntersectionGuard {
   std::vector<int> moved_faces_;          // see candidates_hold()
   std::vector<uint32_t> moved_stamp_;     // #F
   uint32_t moved_stamp_count_ = 0;
+  std::vector<uint32_t> of_stamp_;        // #F: contacts_of() tests a pair of two of its faces once
+  uint32_t of_stamp_count_ = 0;
   std::vector<uint32_t> star_stamp_;      // #V: find_flat_stars() of some faces tests each star once
   std::vector<int> star_list_;
   uint32_t star_stamp_count_ = 0;
