@@ -13,6 +13,7 @@
 #include <fstream>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gauss/collision/self_intersection.h"
@@ -240,6 +241,19 @@ Mesh sheet(int n, double size) {
   return m;
 }
 
+// Two 4 by 4 sheets 0.03 wide, the second `gap` above the first with its vertices at the same x, y
+// (each its own index) and its faces turned the other way (facing the first, as a scan's overlapping
+// sheets do); returns the mesh and the second sheet's first vertex.
+std::pair<Mesh, int> stacked_sheets(double gap) {
+  Mesh m = sheet(4, 0.03);
+  const int offset = static_cast<int>(m.X.size());
+  const int faces = static_cast<int>(m.faces.size());
+  m.X.insert(m.X.end(), m.X.begin(), m.X.end());
+  for (int v = offset; v < static_cast<int>(m.X.size()); ++v) m.X[v].z() += gap;
+  for (int f = 0; f < faces; ++f) m.faces.push_back({m.faces[f][0] + offset, m.faces[f][2] + offset, m.faces[f][1] + offset});
+  return {m, offset};
+}
+
 // A fan of n faces around vertex 0 at the origin, its rim vertices 1..n at radius r in the plane z = 0;
 // closed: the last face joins the last rim vertex to the first.
 Mesh fan(int n, double r, bool closed) {
@@ -418,11 +432,7 @@ TEST(SelfIntersectionShortcuts, NearlyCoplanarNeighboursAndSliversAsBruteForce) 
 TEST(SelfIntersectionShortcuts, DuplicatedVerticesTouchAtTheStartAndMayNotCross) {
   // Two sheets stacked on each other, their vertices at the same places (each its own index): every
   // pair of faces touches at the start, which is allowed; pushed through each other, they may not cross.
-  Mesh m = sheet(4, 0.03);
-  const int offset = static_cast<int>(m.X.size());
-  const int faces = static_cast<int>(m.faces.size());
-  m.X.insert(m.X.end(), m.X.begin(), m.X.end());
-  for (int f = 0; f < faces; ++f) m.faces.push_back({m.faces[f][0] + offset, m.faces[f][2] + offset, m.faces[f][1] + offset});
+  const auto [m, offset] = stacked_sheets(0.0);
   ASSERT_GT(contacts(m.faces, m.X).size(), 0u);
   ASSERT_EQ(Start(m.faces, m.X).crossing.size(), 0u);
   for (unsigned seed = 0; seed < 30; ++seed) {
@@ -441,15 +451,6 @@ TEST(SelfIntersectionShortcuts, SheetsAHairApartAtTheStartMayTouchButNotCross) {
   // back; pressing them through each other is held. Farther apart at the start, pressing them a hair
   // apart holds nothing (the start's margin is not the steps'), within the contact margin is a new
   // contact and is held.
-  const auto stacked = [](double gap) {
-    Mesh m = sheet(4, 0.03);
-    const int offset = static_cast<int>(m.X.size());
-    const int faces = static_cast<int>(m.faces.size());
-    m.X.insert(m.X.end(), m.X.begin(), m.X.end());
-    for (int v = offset; v < static_cast<int>(m.X.size()); ++v) m.X[v].z() += gap;
-    for (int f = 0; f < faces; ++f) m.faces.push_back({m.faces[f][0] + offset, m.faces[f][2] + offset, m.faces[f][1] + offset});
-    return std::make_pair(m, offset);
-  };
   // The upper sheet moved down by `by`, or only its half at x < 0 (bent through the lower sheet).
   const auto pressed = [](const Mesh& m, int offset, double by, bool half = false) {
     Points C = m.X;
@@ -458,10 +459,10 @@ TEST(SelfIntersectionShortcuts, SheetsAHairApartAtTheStartMayTouchButNotCross) {
     return C;
   };
   const double hair = 0.5 * (gauss::kContactMargin + gauss::kStartMargin);
-  const auto [near, near_offset] = stacked(hair);
+  const auto [near, near_offset] = stacked_sheets(hair);
   EXPECT_FALSE(guard_agrees(near, near.X, pressed(near, near_offset, 0.9 * hair), "a hair apart, pressed closer"));
   EXPECT_TRUE(guard_agrees(near, near.X, pressed(near, near_offset, hair + 0.003, true), "a hair apart, bent through"));
-  const auto [far, far_offset] = stacked(2 * gauss::kStartMargin);
+  const auto [far, far_offset] = stacked_sheets(2 * gauss::kStartMargin);
   EXPECT_FALSE(guard_agrees(far, far.X, pressed(far, far_offset, 2 * gauss::kStartMargin - hair),
                             "farther apart, pressed to a hair apart (the start's margin is the start's alone)"));
   EXPECT_TRUE(guard_agrees(far, far.X, pressed(far, far_offset, 2 * gauss::kStartMargin - 0.5 * gauss::kContactMargin),
