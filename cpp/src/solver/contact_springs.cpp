@@ -112,9 +112,16 @@ void ContactSprings::solve(ConstrainedLaplacian& L, std::vector<Vector3d>& X) {
   }
   // Residual of the warm start f: target - K^+ f - P^T L^-1 P f (projected). reached_: P^T L^-1 P f.
   reached_.assign(k, Vector3d::Zero());
+  // Where every solve is a whole one, L^-1 (b + P f) is summed up from them as f is (in base_, which
+  // holds L^-1 b), so that the step needs no final solve.
+  const bool whole = !planned_;
+  const auto add_to_base = [&](double scale) {
+    for (size_t i = 0; i < n3; ++i) base_[i] += scale * work_[i];
+  };
   if (warm) {
     apply_inverse(force_);
     for (int s = 0; s < k; ++s) reached_[s] = at(work_, s);
+    if (whole) add_to_base(1.0);
   }
   double rz = 0, residual_norm = 0;
   for (int s = 0; s < k; ++s) {
@@ -136,6 +143,7 @@ void ContactSprings::solve(ConstrainedLaplacian& L, std::vector<Vector3d>& X) {
     if (!(curvature > 0)) break;
     const double alpha = rz / curvature;
     for (int s = 0; s < k; ++s) reached_[s] += alpha * at(work_, s);
+    if (whole) add_to_base(alpha);
     double next_rz = 0;
     residual_norm = 0;
     for (int s = 0; s < k; ++s) {
@@ -150,12 +158,16 @@ void ContactSprings::solve(ConstrainedLaplacian& L, std::vector<Vector3d>& X) {
     for (int s = 0; s < k; ++s) direction_[s] = preconditioned_[s] + beta * direction_[s];
     ++iterations_;
   }
-  // x = L^-1 (b + P f): the springs' forces on the right-hand side, one whole solve.
-  for (int s = 0; s < k; ++s) {
-    double* r = rhs + 3 * static_cast<size_t>(rows_[s]);
-    r[0] += force_[s].x(), r[1] += force_[s].y(), r[2] += force_[s].z();
+  // x = L^-1 (b + P f): summed up already, or the springs' forces on the right-hand side, one whole solve.
+  if (whole) {
+    std::copy(base_.begin(), base_.end(), rhs);
+  } else {
+    for (int s = 0; s < k; ++s) {
+      double* r = rhs + 3 * static_cast<size_t>(rows_[s]);
+      r[0] += force_[s].x(), r[1] += force_[s].y(), r[2] += force_[s].z();
+    }
+    L.solve_ordered_in_place(rhs);
   }
-  L.solve_ordered_in_place(rhs);
   L.finish_solve(X);
 }
 

@@ -19,8 +19,9 @@
 // the last step's forces: the contact changes little from step to step. An iteration only reads the
 // springs' rows of its solve, so where the springs are few it solves only on the elimination tree's
 // paths above them (cholesky_solver.h: plan_sparse); the step's solution is then one whole solve with
-// the forces on the right-hand side. No re-factorization, and with no spring the global step is the
-// plain one, bit for bit.
+// the forces on the right-hand side. Where the springs are many, each iteration solves whole, and the
+// solution is summed up from those solves as the forces are. No re-factorization, and with no spring
+// the global step is the plain one, bit for bit.
 //
 // A spring stays kKeepSteps steps after its vertex was last held, so that a contact the springs keep
 // apart (the guard then holds nothing there) does not let go at once and press in again.
