@@ -223,6 +223,56 @@ TEST(CholeskySolver, PlannedSolveGivesTheWholeSolveAtItsRows) {
   }
 }
 
+TEST(CholeskySolver, PlannedSolveOfManyRowsRunsOnBothPartsAlike) {
+  // Many scattered rows (a contact's hundreds of springs): the plan reaches into both parts of the
+  // cut, which then run on their own threads. The rows the plan names come out as the whole solve's,
+  // bit for bit on one thread and on two, and the rows outside the plan are left as they were.
+  const gauss::TriangleMesh m = gauss_test::grid_cube(60);
+  const SpMat A = mesh_laplacian(m, {0, 3}, 11);
+  gauss::CholeskySolver s;
+  s.factor(A);
+  const int n = s.size();
+  std::vector<double> B(3 * static_cast<size_t>(n), 0.0);
+  std::vector<int> rows;
+  for (int u = 5; u < n; u += 37) {
+    rows.push_back(s.position(u));
+    for (int k = 0; k < 3; ++k) B[3 * u + k] = 1.0 + u % 7 + k;
+  }
+  const std::vector<double> whole = solve(s, B);
+  std::vector<int> plan;
+  s.plan_sparse(rows.data(), static_cast<int>(rows.size()), plan);
+  std::vector<uint8_t> in_plan(n, 0);
+  {
+    std::vector<int> single(1);
+    for (int r = 0; r < n; ++r) {
+      single[0] = r;
+      std::vector<int> own;
+      s.plan_sparse(single.data(), 1, own);
+      in_plan[r] = std::binary_search(plan.begin(), plan.end(), own.front());
+    }
+  }
+  const int saved = gauss::parallel::max_threads();
+  std::vector<std::vector<double>> results;
+  for (int threads : {1, 2}) {
+    gauss::parallel::set_max_threads(threads);
+    std::vector<double> Y(3 * static_cast<size_t>(n), 0.0);
+    for (int r = 0; r < n; ++r)
+      if (!in_plan[r]) Y[3 * r] = Y[3 * r + 1] = Y[3 * r + 2] = 42.0;  // neither read nor written
+    for (int u = 5; u < n; u += 37)
+      for (int k = 0; k < 3; ++k) Y[3 * s.position(u) + k] = B[3 * u + k];
+    s.solve_planned_in_place(Y.data(), plan);
+    for (int u = 5; u < n; u += 37)
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(Y[3 * s.position(u) + k], whole[3 * u + k], 1e-12 * std::abs(whole[3 * u + k]) + 1e-14);
+    for (int r = 0; r < n; ++r)
+      if (!in_plan[r]) EXPECT_EQ(Y[3 * r], 42.0) << r;
+    results.push_back(Y);
+  }
+  gauss::parallel::set_max_threads(saved);
+  EXPECT_EQ(std::memcmp(results[0].data(), results[1].data(), results[0].size() * sizeof(double)), 0);
+  EXPECT_LT(std::count(in_plan.begin(), in_plan.end(), 1), n) << "the plan leaves rows out";
+}
+
 TEST(CholeskySolver, SharedMeshLaplacianMatchesSimplicialLDLT) {
   const std::string path = gauss_test::shared_mesh("bunny/bun_zipper_35947.obj");
   if (!std::ifstream(path)) GTEST_SKIP() << "../shared/meshes not present";

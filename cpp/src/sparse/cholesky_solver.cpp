@@ -337,9 +337,33 @@ void CholeskySolver::plan_sparse(const int* rows, int count, std::vector<int>& p
 }
 
 void CholeskySolver::solve_planned_in_place(double* y, const std::vector<int>& plan) const {
+  // As sweeps(): the plan's supernodes in each part on their own thread (a part's rows are its own,
+  // and what it owes the rows above the cut goes into its own sums), then the sums in part order and
+  // the supernodes above the cut. A supernode owes only rows of its ancestors, which are in the plan,
+  // so only the plan's rows are read or written.
+  size_t bound[kFactorParts + 1];
+  for (int t = 0; t <= kFactorParts; ++t)
+    bound[t] = static_cast<size_t>(std::lower_bound(plan.begin(), plan.end(), part_start_[t]) - plan.begin());
+  const size_t top_rows = static_cast<size_t>(n_ - top_col_);
+  bool split = true;
+  for (int t = 0; t < kFactorParts; ++t) split = split && bound[t + 1] - bound[t] >= kMinSplitPlan;
   const auto planned = [&](const auto* values) {
-    for (int t : plan) forward(values, t, t + 1, y, nullptr);
-    for (auto t = plan.rbegin(); t != plan.rend(); ++t) backward(values, *t, *t + 1, y);
+    parallel::for_tasks(kFactorParts, split, [&](int t) {
+      double* sums = top_sums_.data() + 3 * top_rows * t;
+      for (size_t i = bound[t]; i < bound[t + 1]; ++i) forward(values, plan[i], plan[i] + 1, y, sums);
+    });
+    for (size_t i = bound[kFactorParts]; i < plan.size(); ++i)
+      for (int r = col_start_[plan[i]]; r < col_start_[plan[i] + 1]; ++r)
+        for (int t = 0; t < kFactorParts; ++t) {
+          double* owed = top_sums_.data() + 3 * top_rows * t + 3 * static_cast<size_t>(r - top_col_);
+          double* target = y + 3 * static_cast<size_t>(r);
+          for (int k = 0; k < 3; ++k) target[k] -= owed[k], owed[k] = 0.0;
+        }
+    for (size_t i = bound[kFactorParts]; i < plan.size(); ++i) forward(values, plan[i], plan[i] + 1, y, nullptr);
+    for (size_t i = plan.size(); i-- > bound[kFactorParts];) backward(values, plan[i], plan[i] + 1, y);
+    parallel::for_tasks(kFactorParts, split, [&](int t) {
+      for (size_t i = bound[t + 1]; i-- > bound[t];) backward(values, plan[i], plan[i] + 1, y);
+    });
   };
   if (values_) planned(values_.get());
   else planned(values_single_.get());

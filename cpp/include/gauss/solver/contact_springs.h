@@ -47,7 +47,8 @@ class ContactSprings {
   static constexpr double kTolerance = 1e-2;
   static constexpr int kMaxIterations = 40;
   // The iterations solve above the springs only (cholesky_solver.h's plan) when that is less than
-  // this share of the factor: it runs on one thread, the whole solve on two.
+  // this share of the factor: it runs on one thread where the springs lie within one part of the
+  // factor's cut (cholesky_solver.h), the whole solve always on two.
   static constexpr double kPlannedShare = 0.5;
 
   // Bytes the springs may hold for a mesh of this many vertices: the per-vertex slot and two

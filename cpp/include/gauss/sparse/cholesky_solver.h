@@ -63,8 +63,9 @@ class CholeskySolver {
   // solve_ordered_in_place() restricted to them: Y must be zero in the plan's other rows, and the
   // solution is right in the plan's rows (the others are neither read nor written; in single
   // precision it is not refined, so right to about 1e-7 of the solution). It costs
-  // plan_nonzeros(plan) of factor_nonzeros(), on one thread. plan_sparse() allocates nothing once
-  // `plan` has grown.
+  // plan_nonzeros(plan) of factor_nonzeros(), on two threads where the plan has at least kMinSplitPlan
+  // supernodes in each of the cut's parts, else on one. plan_sparse() allocates nothing once `plan`
+  // has grown.
   void plan_sparse(const int* rows, int count, std::vector<int>& plan) const;
   void solve_planned_in_place(double* Y, const std::vector<int>& plan) const;
   long long plan_nonzeros(const std::vector<int>& plan) const;
@@ -107,6 +108,9 @@ class CholeskySolver {
   std::vector<int> super_of_col_;   // #rows: the supernode that holds it
   std::vector<int> super_parent_;   // #supernodes: its parent in the elimination tree, -1 for a root
   mutable std::vector<uint8_t> plan_mark_;  // #supernodes, zero between plan_sparse() calls
+  // A planned solve is split between threads only with this many of its supernodes in each part: a
+  // shorter plan (a few springs' paths to the root) costs less than waking a thread.
+  static constexpr size_t kMinSplitPlan = 32;
 };
 
 }  // namespace gauss
