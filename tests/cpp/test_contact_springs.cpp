@@ -1,13 +1,15 @@
 // Contact springs (contact_springs.h), the global step's side of Avoid Self-Intersections: the solve
-// against a dense one, no trace without a contact, and parts pressed together that the guard alone
+// against a direct one, no trace without a contact, and parts pressed together that the guard alone
 // stalled.
 #include <algorithm>
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
 #include <Eigen/Geometry>
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "gauss/collision/self_intersection.h"
@@ -60,72 +62,83 @@ Outcome stylize(const gauss::TriangleMesh& m, bool avoid, double stiffness) {
 
 TEST(ContactSprings, TheSolveIsTheDenseSolveOfTheSystemWithPlaneSprings) {
   // An icosphere with one pin (no free component: no translation after the solve), unit edge
-  // weights, random right-hand sides and a patch of held vertices whose anchors are moved off the
-  // sphere: x must minimize x^T L x / 2 - b^T x + sum w (n . (x - p))^2 / 2.
-  const gauss::TriangleMesh m = gauss_test::icosphere(2);
-  const int nV = m.num_vertices();
-  const gauss::MeshTopology topo = gauss::build_mesh_topology(nV, m.F.data(), m.num_faces());
-  std::vector<Vector3d> rest(nV);
-  for (int v = 0; v < nV; ++v) rest[v] = Vector3d(&m.V[3 * v]);
-  const std::vector<double> weight(topo.edges.size(), 1.0);
-  gauss::ConstrainedLaplacian L(topo, weight, rest, {0}, {rest[0]});
-  const int n = L.num_unknowns();
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  std::vector<Vector3d> b(n);
-  for (Vector3d& r : b) r = Vector3d(uniform(rng), uniform(rng), uniform(rng));
-  std::vector<Vector3d> X = rest;
-  std::vector<int> held;
-  for (int v = 1; v < nV; ++v)
-    if (rest[v].z() > 0.6) held.push_back(v), X[v] *= 1.2;
-  ASSERT_GT(held.size(), 5u);
-  gauss::ContactSprings springs;
-  springs.set_stiffness(2.0);
-  springs.note_held(held, X, L, topo);
-  ASSERT_TRUE(springs.active());
+  // weights, random right-hand sides and held vertices whose anchors are moved off the sphere: x must
+  // minimize x^T L x / 2 - b^T x + sum w (n . (x - p))^2 / 2. A small patch of a finer sphere (the
+  // iterations solve on the plan above its springs) and nearly every vertex of a coarser one (they
+  // solve whole, and the solution is summed up from their solves).
+  std::vector<bool> whole;
+  for (const auto& [level, above] : {std::pair<int, double>{5, 0.97}, {3, -0.9}}) {
+    SCOPED_TRACE("icosphere " + std::to_string(level) + ", held above z = " + std::to_string(above));
+    const gauss::TriangleMesh m = gauss_test::icosphere(level);
+    const int nV = m.num_vertices();
+    const gauss::MeshTopology topo = gauss::build_mesh_topology(nV, m.F.data(), m.num_faces());
+    std::vector<Vector3d> rest(nV);
+    for (int v = 0; v < nV; ++v) rest[v] = Vector3d(&m.V[3 * v]);
+    const std::vector<double> weight(topo.edges.size(), 1.0);
+    gauss::ConstrainedLaplacian L(topo, weight, rest, {0}, {rest[0]});
+    const int n = L.num_unknowns();
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    std::vector<Vector3d> b(n);
+    for (Vector3d& r : b) r = Vector3d(uniform(rng), uniform(rng), uniform(rng));
+    std::vector<Vector3d> X = rest;
+    std::vector<int> held;
+    for (int v = 1; v < nV; ++v)
+      if (rest[v].z() > above) held.push_back(v), X[v] *= 1.2;
+    ASSERT_GT(held.size(), 5u);
+    gauss::ContactSprings springs;
+    springs.set_stiffness(2.0);
+    springs.note_held(held, X, L, topo);
+    ASSERT_TRUE(springs.active());
 
-  // Dense: (L_ff (x) I3 + sum_i w_i n_i n_i^T) x = b + sum_i w_i n_i n_i^T p_i.
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(3 * n, 3 * n);
-  Eigen::VectorXd rhs(3 * n);
-  for (int u = 0; u < n; ++u) rhs.segment<3>(3 * u) = b[u] + L.constant_rhs(u);
-  for (size_t e = 0; e < topo.edges.size(); ++e) {
-    const int a = L.unknown_of_vertex(topo.edges[e][0]), c = L.unknown_of_vertex(topo.edges[e][1]);
-    for (int k = 0; k < 3; ++k) {
-      if (a >= 0) A(3 * a + k, 3 * a + k) += 1.0;
-      if (c >= 0) A(3 * c + k, 3 * c + k) += 1.0;
-      if (a >= 0 && c >= 0) A(3 * a + k, 3 * c + k) -= 1.0, A(3 * c + k, 3 * a + k) -= 1.0;
+    // Directly: (L_ff (x) I3 + sum_i w_i n_i n_i^T) x = b + sum_i w_i n_i n_i^T p_i.
+    std::vector<Eigen::Triplet<double>> entries;
+    Eigen::VectorXd rhs(3 * n);
+    for (int u = 0; u < n; ++u) rhs.segment<3>(3 * u) = b[u] + L.constant_rhs(u);
+    for (size_t e = 0; e < topo.edges.size(); ++e) {
+      const int a = L.unknown_of_vertex(topo.edges[e][0]), c = L.unknown_of_vertex(topo.edges[e][1]);
+      for (int k = 0; k < 3; ++k) {
+        if (a >= 0) entries.emplace_back(3 * a + k, 3 * a + k, 1.0);
+        if (c >= 0) entries.emplace_back(3 * c + k, 3 * c + k, 1.0);
+        if (a >= 0 && c >= 0) entries.emplace_back(3 * a + k, 3 * c + k, -1.0), entries.emplace_back(3 * c + k, 3 * a + k, -1.0);
+      }
     }
-  }
-  for (int v : held) {
-    const int u = L.unknown_of_vertex(v);
-    Vector3d normal = Vector3d::Zero();
-    for (int i = topo.vertex_corner_start[v]; i < topo.vertex_corner_start[v + 1]; ++i) {
-      const auto& f = topo.faces[topo.vertex_corners[i] / 3];
-      normal += (X[f[1]] - X[f[0]]).cross(X[f[2]] - X[f[0]]);
+    for (int v : held) {
+      const int u = L.unknown_of_vertex(v);
+      Vector3d normal = Vector3d::Zero();
+      for (int i = topo.vertex_corner_start[v]; i < topo.vertex_corner_start[v + 1]; ++i) {
+        const auto& f = topo.faces[topo.vertex_corners[i] / 3];
+        normal += (X[f[1]] - X[f[0]]).cross(X[f[2]] - X[f[0]]);
+      }
+      normal.normalize();
+      const Eigen::Matrix3d K = 2.0 * L.diagonal(u) * normal * normal.transpose();
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) entries.emplace_back(3 * u + i, 3 * u + j, K(i, j));
+      rhs.segment<3>(3 * u) += K * X[v];
     }
-    normal.normalize();
-    const Eigen::Matrix3d K = 2.0 * L.diagonal(u) * normal * normal.transpose();
-    A.block<3, 3>(3 * u, 3 * u) += K;
-    rhs.segment<3>(3 * u) += K * X[v];
-  }
-  const Eigen::VectorXd exact = A.ldlt().solve(rhs);
+    Eigen::SparseMatrix<double> A(3 * n, 3 * n);
+    A.setFromTriplets(entries.begin(), entries.end());
+    const Eigen::VectorXd exact = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>(A).solve(rhs);
 
-  // Without springs, for the scale of their effect.
-  for (int u = 0; u < n; ++u) L.set_rhs(u, L.constant_rhs(u) + b[u]);
-  std::vector<Vector3d> plain = rest;
-  L.solve(plain);
-  for (int u = 0; u < n; ++u) L.set_rhs(u, L.constant_rhs(u) + b[u]);
-  std::vector<Vector3d> solved = rest;
-  springs.solve(L, solved);
-  EXPECT_GT(springs.last_iterations(), 0);
-  double error = 0, effect = 0;
-  for (int u = 0; u < n; ++u) {
-    const int v = L.vertex_of_unknown(u);
-    error = std::max(error, (solved[v] - exact.segment<3>(3 * u)).cwiseAbs().maxCoeff());
-    effect = std::max(effect, (plain[v] - exact.segment<3>(3 * u)).cwiseAbs().maxCoeff());
+    // Without springs, for the scale of their effect.
+    for (int u = 0; u < n; ++u) L.set_rhs(u, L.constant_rhs(u) + b[u]);
+    std::vector<Vector3d> plain = rest;
+    L.solve(plain);
+    for (int u = 0; u < n; ++u) L.set_rhs(u, L.constant_rhs(u) + b[u]);
+    std::vector<Vector3d> solved = rest;
+    springs.solve(L, solved);
+    EXPECT_GT(springs.last_iterations(), 0);
+    whole.push_back(springs.last_solved_whole());
+    double error = 0, effect = 0;
+    for (int u = 0; u < n; ++u) {
+      const int v = L.vertex_of_unknown(u);
+      error = std::max(error, (solved[v] - exact.segment<3>(3 * u)).cwiseAbs().maxCoeff());
+      effect = std::max(effect, (plain[v] - exact.segment<3>(3 * u)).cwiseAbs().maxCoeff());
+    }
+    EXPECT_GT(effect, 1e-2);  // the springs change the solve
+    EXPECT_LT(error, 0.02 * effect);  // the conjugate gradients stop at a residual of 1e-2
   }
-  EXPECT_GT(effect, 1e-2);  // the springs change the solve
-  EXPECT_LT(error, 0.02 * effect);  // the conjugate gradients stop at a residual of 1e-2
+  EXPECT_EQ(whole, (std::vector<bool>{false, true})) << "the patch solves on its plan, nearly every vertex whole";
 }
 
 TEST(ContactSprings, WithoutAContactTheyLeaveNoTrace) {

@@ -79,8 +79,8 @@ void ContactSprings::solve(ConstrainedLaplacian& L, std::vector<Vector3d>& X) {
   };
   // The iterations read L^-1 P v at the springs' rows only: where the springs are a small part of
   // the mesh, a solve restricted to the elimination tree above them gives those rows for a part of a
-  // whole solve's cost (cholesky_solver.h), on two threads where they reach into both parts of the
-  // factor's cut; else the whole solve, on all.
+  // whole solve's cost (cholesky_solver.h: on two threads where CholeskySolver::plan_splits); else
+  // the whole solve.
   rows_.resize(k);
   for (int s = 0; s < k; ++s) rows_[s] = L.position(unknown_[s]);
   L.plan_sparse(rows_.data(), k, plan_);

@@ -345,8 +345,7 @@ void CholeskySolver::solve_planned_in_place(double* y, const std::vector<int>& p
   for (int t = 0; t <= kFactorParts; ++t)
     bound[t] = static_cast<size_t>(std::lower_bound(plan.begin(), plan.end(), part_start_[t]) - plan.begin());
   const size_t top_rows = static_cast<size_t>(n_ - top_col_);
-  bool split = true;
-  for (int t = 0; t < kFactorParts; ++t) split = split && bound[t + 1] - bound[t] >= kMinSplitPlan;
+  const bool split = plan_splits(plan);
   const auto planned = [&](const auto* values) {
     parallel::for_tasks(kFactorParts, split, [&](int t) {
       double* sums = top_sums_.data() + 3 * top_rows * t;
@@ -367,6 +366,15 @@ void CholeskySolver::solve_planned_in_place(double* y, const std::vector<int>& p
   };
   if (values_) planned(values_.get());
   else planned(values_single_.get());
+}
+
+bool CholeskySolver::plan_splits(const std::vector<int>& plan) const {
+  for (int t = 0; t < kFactorParts; ++t) {
+    const auto first = std::lower_bound(plan.begin(), plan.end(), part_start_[t]);
+    if (std::lower_bound(first, plan.end(), part_start_[t + 1]) - first < static_cast<std::ptrdiff_t>(kMinSplitPlan))
+      return false;
+  }
+  return true;
 }
 
 long long CholeskySolver::plan_nonzeros(const std::vector<int>& plan) const {

@@ -47,8 +47,9 @@ class ContactSprings {
   static constexpr double kTolerance = 1e-2;
   static constexpr int kMaxIterations = 40;
   // The iterations solve above the springs only (cholesky_solver.h's plan) when that is less than
-  // this share of the factor: it runs on one thread where the springs lie within one part of the
-  // factor's cut (cholesky_solver.h), the whole solve always on two.
+  // this share of the factor: it runs on two threads only where the plan reaches far enough into both
+  // parts of the factor's cut (CholeskySolver::plan_splits), the whole solve on two wherever the
+  // factor is not small.
   static constexpr double kPlannedShare = 0.5;
 
   // Bytes the springs may hold for a mesh of this many vertices: the per-vertex slot and two
@@ -68,8 +69,10 @@ class ContactSprings {
   int count() const { return static_cast<int>(vertex_.size()); }
   // L's right-hand side set (L.set_rhs): solves the system with the springs and writes X as L.solve() does.
   void solve(ConstrainedLaplacian& L, std::vector<Eigen::Vector3d>& X);
-  // Conjugate-gradient iterations of the last solve() (each one solve with the factor).
+  // Conjugate-gradient iterations of the last solve() (each one solve with the factor), and whether
+  // they solved with the whole factor (else on the plan above the springs).
   int last_iterations() const { return iterations_; }
+  bool last_solved_whole() const { return !planned_; }
 
  private:
   double stiffness_ = kDefaultStiffness;
@@ -80,7 +83,8 @@ class ContactSprings {
   std::vector<Eigen::Vector3d> force_;   // per spring: f of the last solve (the warm start)
   std::vector<Eigen::Vector3d> normal_;  // per spring: its vertex's unit normal when it was last held
   // Per spring, the conjugate gradients' vectors and its row (elimination order); per unknown (by 3,
-  // elimination order) L^-1 b and one solve's buffer; the supernodes above the springs' rows. Kept:
+  // elimination order) L^-1 b (where the iterations solve whole, then L^-1 (b + P f) as f grows) and
+  // one solve's buffer; the supernodes above the springs' rows. Kept:
   // a step allocates nothing once they have grown.
   std::vector<Eigen::Vector3d> target_, residual_, direction_, preconditioned_, applied_, reached_;
   std::vector<int> rows_, plan_;

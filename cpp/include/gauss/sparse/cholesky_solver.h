@@ -63,12 +63,13 @@ class CholeskySolver {
   // solve_ordered_in_place() restricted to them: Y must be zero in the plan's other rows, and the
   // solution is right in the plan's rows (the others are neither read nor written; in single
   // precision it is not refined, so right to about 1e-7 of the solution). It costs
-  // plan_nonzeros(plan) of factor_nonzeros(), on two threads where the plan has at least kMinSplitPlan
-  // supernodes in each of the cut's parts, else on one. plan_sparse() allocates nothing once `plan`
-  // has grown.
+  // plan_nonzeros(plan) of factor_nonzeros(), on two threads where plan_splits(plan) (at least
+  // kMinSplitPlan of its supernodes in each of the cut's parts), else on one. One solve at a time per
+  // solver, as above. plan_sparse() allocates nothing once `plan` has grown.
   void plan_sparse(const int* rows, int count, std::vector<int>& plan) const;
   void solve_planned_in_place(double* Y, const std::vector<int>& plan) const;
   long long plan_nonzeros(const std::vector<int>& plan) const;
+  bool plan_splits(const std::vector<int>& plan) const;
   int size() const { return n_; }
   // Values of L stored: its lower triangle, diagonal included, plus the few explicit zeros that
   // relaxed supernodes add.
