@@ -477,9 +477,7 @@ bool SelfIntersectionGuard::slide_along(int v, int other, const std::vector<Vect
   const Vector3d u = n / ln;
   const Vector3d d = aim_[v] - safe[v];
   const double side = (safe[v] - safe[t[0]]).dot(u), towards = d.dot(u);
-  // Moving away from the other face, or along it (a step slid along it already keeps only rounding's
-  // part towards it, and sliding again would use up a slide without moving): nothing to take off.
-  if (side * towards >= 0 || std::abs(towards) <= 1e-9 * d.norm()) return false;
+  if (side * towards >= 0) return false;  // moving away from the other face: sliding changes nothing
   aim_[v] = safe[v] + d - towards * u;
   return true;
 }

@@ -118,8 +118,7 @@ class SelfIntersectionGuard {
   // False (aim_ unchanged) where that changes nothing.
   bool slide_along(int v, int other, const std::vector<Eigen::Vector3d>& safe);
   // step_fraction_ of a vertex slid k times in this limit_stage: -k; it slides at most -kLastSlide
-  // times (on different contacts: along a face it slid along already there is nothing to take off),
-  // then its slid step is halved.
+  // times (on different contacts), then its slid step is halved.
   static constexpr float kLastSlide = -2.0f;
   void take_slid_pairs();
   // Pairs (f < g, as f * 2^32 + g) in contact at X (closer than margin: kContactMargin, or the start's
