@@ -405,8 +405,12 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
   const int nV = static_cast<int>(X.size());
   double longest = 0;
   for (int v = 0; v < nV; ++v) longest = std::max(longest, (X[v] - safe[v]).cwiseAbs().maxCoeff());
-  constexpr int kMaxStages = 256;
-  const int stages = static_cast<int>(std::min<double>(kMaxStages, std::max(1.0, std::ceil(longest / kStageMove))));
+  // The stages a move (largest coordinate) is checked in: none longer than kStageMove, at most 256.
+  const auto stages_for = [](double move) {
+    constexpr int kMaxStages = 256;
+    return static_cast<int>(std::min<double>(kMaxStages, std::max(1.0, std::ceil(move / kStageMove))));
+  };
+  const int stages = stages_for(longest);
   // How far most vertices go in a stage: whether candidates found now would last (find_candidates()).
   stage_moves_.resize(nV);
   for (int v = 0; v < nV; ++v) stage_moves_[v] = static_cast<float>((X[v] - safe[v]).cwiseAbs().maxCoeff() / stages);
@@ -432,8 +436,7 @@ int SelfIntersectionGuard::limit(const std::vector<Vector3d>& safe, std::vector<
   // makes its whole move in the first stage, and the later stages move only the few that go further
   // (a folding part swinging at every step), so only their faces are checked there, not the mesh.
   for (int v = 0; v < nV; ++v) {
-    own_stages_[v] = static_cast<int>(
-        std::min<double>(stages, std::max(1.0, std::ceil((X[v] - safe[v]).cwiseAbs().maxCoeff() / kStageMove))));
+    own_stages_[v] = stages_for((X[v] - safe[v]).cwiseAbs().maxCoeff());  // at most `stages`: no move is longer
     move_[v] = (X[v] - safe[v]) / own_stages_[v];
   }
   stage_start_ = safe;
