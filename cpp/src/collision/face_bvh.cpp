@@ -4,15 +4,23 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <functional>
-#include <limits>
+#include <iterator>
 
 #include "gauss/util/parallel.h"
 
 namespace gauss {
 
 using Eigen::Vector3d;
+
+namespace {
+// The angle between two vectors (pi if either is zero).
+double angle_between(const Vector3d& a, const Vector3d& b) {
+  const double la = a.norm(), lb = b.norm();
+  if (!(la > 0 && lb > 0)) return kPi;
+  return std::acos(std::clamp(a.dot(b) / (la * lb), -1.0, 1.0));
+}
+}  // namespace
 
 FaceBvh::FaceBvh(const std::vector<std::array<int, 3>>& faces, const std::vector<Vector3d>& X0)
     : faces_(&faces), order_(faces.size()), face_box_(faces.size()), face_area_(faces.size()) {
@@ -31,6 +39,8 @@ FaceBvh::FaceBvh(const std::vector<std::array<int, 3>>& faces, const std::vector
     if (nodes_[node].left < 0)
       for (int i = nodes_[node].begin; i < nodes_[node].end; ++i) leaf_of_[i] = node;
   find_connected_nodes();
+  find_node_borders();
+  find_refit_tasks();
   node_stamp_.assign(nodes_.size(), 0);
   if (!nodes_.empty()) tasks_ = tasks(kTasks);
 }
@@ -74,6 +84,88 @@ void FaceBvh::find_connected_nodes() {
   }
 }
 
+void FaceBvh::find_node_borders() {
+  const std::vector<std::array<int, 3>>& faces = *faces_;
+  int num_vertices = 0;
+  for (const auto& f : faces) num_vertices = std::max({num_vertices, f[0] + 1, f[1] + 1, f[2] + 1});
+  // Each vertex's faces, by their place in tree order.
+  std::vector<int> start(num_vertices + 1, 0), place(3 * faces.size());
+  for (const auto& f : faces)
+    for (int v : f) ++start[v + 1];
+  for (int v = 0; v < num_vertices; ++v) start[v + 1] += start[v];
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (size_t i = 0; i < order_.size(); ++i)
+    for (int v : faces[order_[i]]) place[fill[v]++] = static_cast<int>(i);
+  const auto on_border = [&](int v, const Node& node) {
+    for (int k = start[v]; k < start[v + 1]; ++k)
+      if (place[k] < node.begin || place[k] >= node.end) return true;
+    return false;
+  };
+  // Children first (they come after their parent): a node's border is among its children's.
+  std::vector<std::vector<int>> border(nodes_.size());
+  std::vector<int> joined;
+  for (int n = static_cast<int>(nodes_.size()) - 1; n >= 0; --n) {
+    const Node& node = nodes_[n];
+    joined.clear();
+    if (node.left < 0) {
+      for (int i = node.begin; i < node.end; ++i) joined.insert(joined.end(), faces[order_[i]].begin(), faces[order_[i]].end());
+      std::sort(joined.begin(), joined.end());
+      joined.erase(std::unique(joined.begin(), joined.end()), joined.end());
+    } else {
+      const std::vector<int>&l = border[node.left], &r = border[node.right];
+      std::set_union(l.begin(), l.end(), r.begin(), r.end(), std::back_inserter(joined));
+    }
+    for (int v : joined)
+      if (on_border(v, node)) border[n].push_back(v);
+  }
+  border_start_.assign(nodes_.size() + 1, 0);
+  for (size_t n = 0; n < nodes_.size(); ++n) border_start_[n + 1] = border_start_[n] + static_cast<int>(border[n].size());
+  border_.resize(border_start_.back());
+  for (size_t n = 0; n < nodes_.size(); ++n) std::copy(border[n].begin(), border[n].end(), border_.begin() + border_start_[n]);
+}
+
+void FaceBvh::find_refit_tasks() {
+  if (nodes_.empty()) return;
+  std::vector<int> end(nodes_.size());  // the end of each node's subtree
+  for (int n = static_cast<int>(nodes_.size()) - 1; n >= 0; --n) end[n] = nodes_[n].left < 0 ? n + 1 : end[nodes_[n].right];
+  // Breadth first from the root, splitting the subtrees until there are enough of them.
+  std::vector<int> roots{0};
+  for (size_t i = 0; i < roots.size() && static_cast<int>(roots.size()) < kRefitTasks;) {
+    const Node& node = nodes_[roots[i]];
+    if (node.left < 0) {
+      ++i;
+      continue;
+    }
+    refit_top_.push_back(roots[i]);
+    roots[i] = node.left;
+    roots.push_back(node.right);
+  }
+  for (int root : roots) refit_roots_.push_back({root, end[root]});
+  std::sort(refit_top_.begin(), refit_top_.end(), std::greater<int>());
+}
+
+template <class Fit>
+void FaceBvh::fit_nodes(Fit&& fit) {
+  parallel::for_tasks(static_cast<int>(refit_roots_.size()), nodes_.size() > 2048, [&](int t) {
+    for (int n = refit_roots_[t][1] - 1; n >= refit_roots_[t][0]; --n) fit(n);
+  });
+  for (int n : refit_top_) fit(n);
+}
+
+bool FaceBvh::join_flat(int a, int b) const {
+  const Node &na = nodes_[a], &nb = nodes_[b];
+  // The cone around both: half of the angle between their axes and both half-angles.
+  if (!(angle_between(na.area, nb.area) + na.angle + nb.angle < 2 * kFlatAngle)) return false;
+  const int *i = &border_[border_start_[a]], *i_end = &border_[border_start_[a + 1]];
+  const int *j = &border_[border_start_[b]], *j_end = &border_[border_start_[b + 1]];
+  while (i != i_end && j != j_end) {
+    if (*i == *j) return true;
+    if (*i < *j) ++i;
+    else ++j;
+  }
+  return false;
+}
+
 std::vector<std::array<int, 2>> FaceBvh::tasks(int count) const {
   // within(root) expanded breadth first: within(n) = within(left) + within(right) + between(left,
   // right); a between task stays whole.
@@ -94,7 +186,7 @@ std::vector<std::array<int, 2>> FaceBvh::tasks(int count) const {
 
 int FaceBvh::build(int begin, int end, int parent, const std::vector<Vector3d>& centroid) {
   const int index = static_cast<int>(nodes_.size());
-  nodes_.push_back(Node{Box{}, begin, end, -1, -1, parent, false, false, Vector3d::Zero(), kPi});
+  nodes_.push_back(Node{Box{}, begin, end, -1, -1, parent, false, false, false, Vector3d::Zero(), kPi});
   if (end - begin > kLeafSize) {
     Vector3d lo = centroid[order_[begin]], hi = lo;
     for (int i = begin + 1; i < end; ++i) {
@@ -117,32 +209,22 @@ int FaceBvh::build(int begin, int end, int parent, const std::vector<Vector3d>& 
 int64_t FaceBvh::bytes_needed(int64_t num_faces) {
   // A face's box (24 bytes), its place in the order and back and its leaf (12) and its centroid while
   // building (24), and its area vector (24); per leaf a share of the tree: 2 nodes, each with a stamp
-  // and a place in a list.
-  return 84 * num_faces + 2 * static_cast<int64_t>(sizeof(Node) + 8) * (num_faces / kLeafSize + 1);
+  // and a place in a list. The nodes' borders: about 7 corners a face on the armadillos, Spot and the
+  // camel head (room for 8), twice while they are made, with each vertex's faces (12 bytes a face),
+  // and per node a list and its start.
+  const int64_t nodes = 2 * (num_faces / kLeafSize + 1);
+  return (84 + 2 * 32 + 12) * num_faces + nodes * static_cast<int64_t>(sizeof(Node) + 8 + sizeof(std::vector<int>) + 4);
 }
 
 namespace {
-// The float nearest x on its side: at most x (below) or at least x (above), so a box rounded so
-// holds the double one. The conversion rounds to nearest; one step of the float's bits fixes the
-// half of the cases where that went the wrong way (std::nextafter, a call into libm, was a tenth
-// of a check's time on the 43K armadillo).
-float step_down(float f) {
-  if (!(f > -std::numeric_limits<float>::infinity())) return f;  // -inf or NaN
-  if (f == 0.0f) return -std::numeric_limits<float>::denorm_min();
-  uint32_t bits;
-  std::memcpy(&bits, &f, sizeof bits);
-  bits = f > 0.0f ? bits - 1 : bits + 1;
-  std::memcpy(&f, &bits, sizeof f);
-  return f;
-}
-float below(double x) {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? step_down(f) : f;
-}
-float above(double x) {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? -step_down(-f) : f;
-}
+// A float at most x (below) or at least x (above), within 2^-22 of |x|: x moved outwards by more
+// than the conversion's rounding (half a float step, at most 2^-24 |x|) before it is converted, so
+// a box so rounded holds the double one. No branch: the conversion's rounding goes either way at
+// random, and a branch on it (or std::nextafter, a call into libm) was a tenth of a check's time on
+// the 43K armadillo. The tiny term keeps 0 on its side.
+constexpr double kOutwards = 1.0 / (1 << 23);
+float below(double x) { return static_cast<float>(x - (std::abs(x) * kOutwards + 1e-30)); }
+float above(double x) { return static_cast<float>(x + (std::abs(x) * kOutwards + 1e-30)); }
 }  // namespace
 
 void FaceBvh::fit_face_box(int i, const std::vector<Vector3d>& X, double margin) {
@@ -164,14 +246,6 @@ void FaceBvh::fit_face(int i, const std::vector<Vector3d>& X, double margin) {
   face_area_[i] = (X[face[1]] - a).cross(X[face[2]] - a);
 }
 
-namespace {
-// The angle between two vectors (pi if either is zero).
-double angle_between(const Vector3d& a, const Vector3d& b) {
-  const double la = a.norm(), lb = b.norm();
-  if (!(la > 0 && lb > 0)) return kPi;
-  return std::acos(std::clamp(a.dot(b) / (la * lb), -1.0, 1.0));
-}
-}  // namespace
 
 void FaceBvh::fit_node_box(int n) {
   Node& node = nodes_[n];
@@ -184,33 +258,47 @@ void FaceBvh::fit_node_box(int n) {
   for (int i = node.begin + 1; i < node.end; ++i) node.box.merge(face_box_[i]);
 }
 
-void FaceBvh::fit_node(int n) {
+void FaceBvh::fit_node(int n, const std::vector<uint8_t>& flat_corners) {
   Node& node = nodes_[n];
   fit_node_box(n);
   if (node.left >= 0) {
     const Node &l = nodes_[node.left], &r = nodes_[node.right];
+    node.unfolded = l.unfolded && r.unfolded;
     node.area = l.area + r.area;
     node.angle = std::min(kPi, std::max(angle_between(node.area, l.area) + l.angle,
                                         angle_between(node.area, r.area) + r.angle));
   } else {
+    node.unfolded = true;
+    for (int i = node.begin; i < node.end; ++i)
+      for (int v : (*faces_)[order_[i]]) node.unfolded = node.unfolded && flat_corners[v];
     node.area = face_area_[node.begin];
     for (int i = node.begin + 1; i < node.end; ++i) node.area += face_area_[i];
-    node.angle = 0;
-    for (int i = node.begin; i < node.end; ++i) node.angle = std::max(node.angle, angle_between(node.area, face_area_[i]));
+    // The widest angle from the smallest cosine: one arc cosine a leaf.
+    double least = 1;
+    const double length = node.area.norm();
+    for (int i = node.begin; i < node.end; ++i) {
+      const double cosine = node.area.dot(face_area_[i]) / (length * face_area_[i].norm());
+      if (!(cosine > -1)) {  // opposite, or a zero area (NaN): pi, as angle_between() takes it
+        least = -1;
+        break;
+      }
+      least = std::min(least, cosine);
+    }
+    node.angle = std::acos(least);
   }
-  node.flat = node.connected && node.angle < kFlatAngle;
+  node.flat = node.connected && node.unfolded && node.angle < kFlatAngle;
 }
 
-void FaceBvh::refit(const std::vector<Vector3d>& X, double margin) {
+void FaceBvh::refit(const std::vector<Vector3d>& X, double margin, const std::vector<uint8_t>& flat_corners) {
   parallel::for_each(static_cast<int>(face_box_.size()), parallel::kMinParallelItems,
                      [&](int i) { fit_face(i, X, margin); });
-  for (int n = static_cast<int>(nodes_.size()) - 1; n >= 0; --n) fit_node(n);  // children first
+  fit_nodes([&](int n) { fit_node(n, flat_corners); });
 }
 
 void FaceBvh::refit_boxes(const std::vector<Vector3d>& X, double margin) {
   parallel::for_each(static_cast<int>(face_box_.size()), parallel::kMinParallelItems,
                      [&](int i) { fit_face_box(i, X, margin); });
-  for (int n = static_cast<int>(nodes_.size()) - 1; n >= 0; --n) fit_node_box(n);  // children first
+  fit_nodes([&](int n) { fit_node_box(n); });
 }
 
 void FaceBvh::refit_faces(const std::vector<int>& faces, const std::vector<Vector3d>& X, double margin) {

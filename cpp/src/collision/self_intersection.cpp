@@ -63,7 +63,7 @@ struct PairSink {
 std::vector<std::array<int, 2>> self_intersecting_pairs(const std::vector<std::array<int, 3>>& faces,
                                                         const std::vector<Vector3d>& X) {
   FaceBvh bvh(faces, X);
-  bvh.refit(X, 0.0);
+  bvh.refit_boxes(X, 0.0);  // every pair is searched: no flat patches needed
   PairSink sink;
   bvh.for_overlapping_pairs([&](int, int f, int g) {
     Triangle a, b;
@@ -86,6 +86,7 @@ SelfIntersectionGuard::SelfIntersectionGuard(const MeshTopology& topo, const std
       bvh_(topo.faces, X0),
       star_kind_(X0.size(), kClosedStar),
       flat_star_(X0.size(), 0),
+      patch_corner_(X0.size(), 0),
       candidate_(X0.size()),
       aim_(X0.size()),
       step_fraction_(X0.size(), 1.0f),
@@ -119,7 +120,7 @@ SelfIntersectionGuard::SelfIntersectionGuard(const MeshTopology& topo, const std
   mean_edge_ = topo.edges.empty() ? 0 : length / static_cast<double>(topo.edges.size());
 }
 
-void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, const std::vector<int>* faces) {
+void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, const std::vector<int>* faces, bool patches) {
   const MeshTopology& topo = *topo_;
   constexpr double kTwoPi = 6.283185307179586;
   const auto star = [&](int v) {
@@ -137,9 +138,14 @@ void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, cons
       b = X[ib] - X[v];
     };
     Vector3d n = Vector3d::Zero();
+    bool thick = true;
     for (int i = begin; i < end; ++i) {
       wedge(i);
-      n += a.cross(b);
+      const Vector3d twice_area = a.cross(b);
+      n += twice_area;
+      if (!patches) continue;
+      const double longest = std::max({a.squaredNorm(), b.squaredNorm(), (b - a).squaredNorm()});
+      thick = thick && twice_area.squaredNorm() >= kThinFace * kThinFace * longest;
     }
     bool flat = n.squaredNorm() > 0;
     // Seen along n, every face must turn the right way (a wedge of less than half a turn), and the
@@ -170,6 +176,7 @@ void SelfIntersectionGuard::find_flat_stars(const std::vector<Vector3d>& X, cons
       covering += ib != ray && (ia == ray || a.dot(m) <= 0) && b.dot(m) > 0;
     }
     flat_star_[v] = flat && star_kind_[v] != kNeverFlat && (star_kind_[v] == kClosedStar ? covering == 1 : winding < kTwoPi);
+    if (patches) patch_corner_[v] = flat_star_[v] && star_kind_[v] == kClosedStar && thick;
   };
   if (faces == nullptr) {
     parallel::for_each(topo.num_vertices, parallel::kMinParallelItems, star);
@@ -188,7 +195,7 @@ int64_t SelfIntersectionGuard::bytes_needed(int64_t num_vertices, int64_t num_fa
   // Per vertex the buffers above; per face its two stamps, its place in moved_faces_ and the candidate
   // pairs, about 6 per face on the armadillos (kCandidateReach), with room for twice that and the
   // list's growth.
-  return FaceBvh::bytes_needed(num_faces) + (24 + 4 + 4 + 4 + 2 + 24 + 24 + 1 + 24 + 4 + 4 + 4) * num_vertices +
+  return FaceBvh::bytes_needed(num_faces) + (24 + 4 + 4 + 4 + 3 + 24 + 24 + 1 + 24 + 4 + 4 + 4) * num_vertices +
          (4 + 4 + 4 + 16 * 8) * num_faces;
 }
 
@@ -205,7 +212,10 @@ bool SelfIntersectionGuard::in_contact(int f, int g, const std::vector<Vector3d>
 
 const std::vector<uint64_t>& SelfIntersectionGuard::contacts(const std::vector<Vector3d>& X, bool skip_allowed,
                                                             double margin) {
-  find_flat_stars(X, nullptr);
+  // The pairs sharing no corner come from the candidates where they serve, else from a search of the
+  // tree, which needs the flat patches (marked with the stars).
+  const bool search_tree = !candidates_hold(X, margin) && !find_candidates(X, margin);
+  find_flat_stars(X, nullptr, search_tree);
   found_.clear();
   const auto test = [&](int f, int g) {
     if (!in_contact(f, g, X, margin)) return;
@@ -224,10 +234,10 @@ const std::vector<uint64_t>& SelfIntersectionGuard::contacts(const std::vector<V
       for (int j = i + 1; j < end; ++j) test(topo.vertex_corners[i] / 3, topo.vertex_corners[j] / 3);
   });
   // Pairs sharing none whose boxes overlap.
-  if (!candidates_hold(X, margin) && !find_candidates(X, margin)) {
+  if (search_tree) {
     // The vertices move too far for candidates to last: one search of the tree, which leaves out
     // the pairs inside flat patches (face_bvh.h), most of a fast-moving surface's pairs.
-    bvh_.refit(X, 0.5 * margin);
+    bvh_.refit(X, 0.5 * margin, patch_corner_);
     bvh_.for_overlapping_pairs([&](int, int f, int g) {
       if (!share_corner(f, g)) test(f, g);
     }, true);

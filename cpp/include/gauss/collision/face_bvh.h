@@ -6,16 +6,21 @@
 // over the faces.
 //
 // Flat patches (Volino and Magnenat-Thalmann's normal cones): a connected patch whose face normals all
-// lie within less than a right angle of one axis is a height field over the plane normal to it, so
-// two of its faces can only meet where their projections overlap: around a corner whose star folds
-// (which the caller tests: self_intersection.h), or where the patch winds around the axis like a
-// spiral ramp, which the contour test of Volino and Magnenat-Thalmann would catch and which a node of
-// this tree (a compact cluster, rest-shape neighbours) does not form. for_overlapping_pairs(fn, true)
-// skips the pairs inside such nodes; most neighbouring faces on a smooth or stylized surface are.
+// lie within less than a right angle of one axis, and whose corners' stars each cover no point twice
+// seen along it, is a height field over the plane normal to it, unless it winds around the axis like
+// a spiral ramp (which the contour test of Volino and Magnenat-Thalmann would catch, and which a
+// compact cluster of rest-shape neighbours, as this tree's nodes are, does not form). Two of its faces
+// that share no corner then do not cross, and they do not come closer than the caller's margin if its
+// faces are not too thin for the cone (the caller marks the corners whose stars qualify:
+// self_intersection.h, kThinFace). for_overlapping_pairs(fn, true) skips the pairs inside such a node,
+// and the pairs between two such nodes that share a corner and whose cones fit in one of half-angle
+// kFlatAngle: most pairs of neighbouring faces on a smooth or stylized surface, and most of those a
+// non-flat node's two halves have along their seam.
 //
 // Usage:
 //   FaceBvh bvh(topo.faces, X0);             // once (allocates); X0 #V by 3
-//   bvh.refit(X, margin);                    // per check: boxes of the faces at X (#V by 3), grown by margin
+//   bvh.refit(X, margin, flat_corners);      // per check: boxes of the faces at X (#V by 3), grown by
+//                                            // margin, and the flat patches
 //   bvh.for_overlapping_pairs(fn, skip_flat); // fn(t, f, g) once for every pair of faces f != g whose
 //                                            // boxes overlap (in either order; skip_flat: not inside
 //                                            // a flat patch), from several threads at once (fn must
@@ -41,7 +46,9 @@ class FaceBvh {
   // faces: #F by 3 vertex indices.
   FaceBvh(const std::vector<std::array<int, 3>>& faces, const std::vector<Eigen::Vector3d>& X0);
 
-  void refit(const std::vector<Eigen::Vector3d>& X, double margin);
+  // flat_corners: #V, nonzero where the vertex's star qualifies for a flat patch (see above): a node is
+  // flat only where all its corners' stars do.
+  void refit(const std::vector<Eigen::Vector3d>& X, double margin, const std::vector<uint8_t>& flat_corners);
   void refit_boxes(const std::vector<Eigen::Vector3d>& X, double margin);
   // The boxes of the given faces only (and of the nodes above them), when no other face moved.
   void refit_faces(const std::vector<int>& faces, const std::vector<Eigen::Vector3d>& X, double margin);
@@ -81,38 +88,61 @@ class FaceBvh {
     int left, right;  // child nodes, -1 for a leaf
     int parent;       // -1 for the root
     bool connected;   // its faces form one patch (through shared corners)
-    bool flat;        // connected, and its normal cone's half-angle is below kFlatAngle (at the last refit)
+    bool unfolded;    // all its corners are flat_corners (at the last refit)
+    bool flat;        // connected, unfolded, and its normal cone's half-angle is below kFlatAngle (at the last refit)
     Eigen::Vector3d area;  // sum of its faces' area vectors (the cone's axis)
     double angle;          // the cone's half-angle (pi when unknown)
   };
-  static constexpr double kFlatAngle = 1.4;  // radians (80 degrees): a right angle, less a margin
+  // Radians (57 degrees): seen along the axis, a face's least altitude is then at least cos(1) = 0.54
+  // of its own, which keeps the faces of a flat patch that share no corner apart (self_intersection.h,
+  // kThinFace). It was 80 degrees while the pairs between two nodes were all searched.
+  static constexpr double kFlatAngle = 1.0;
   static constexpr int kLeafSize = 4;
 
   int build(int begin, int end, int parent, const std::vector<Eigen::Vector3d>& centroid);
   void fit_face(int i, const std::vector<Eigen::Vector3d>& X, double margin);  // i: place in tree order
   void fit_face_box(int i, const std::vector<Eigen::Vector3d>& X, double margin);  // its box alone
-  void fit_node(int n);      // its box and its normal cone
+  void fit_node(int n, const std::vector<uint8_t>& flat_corners);  // its box, its normal cone, whether flat
   void fit_node_box(int n);  // its box alone
   // The pairs within node n (a != b: between nodes a and b), depth first.
   template <class Fn>
   void within(int n, Fn& fn, bool skip_flat) const;
   template <class Fn>
-  void between(int a, int b, Fn& fn) const;
+  void between(int a, int b, Fn& fn, bool skip_flat) const;
+  // Whether nodes a and b (disjoint, both flat) make one flat patch: their normal cones fit in one of
+  // half-angle kFlatAngle, and they share a corner (each is connected, so their union is).
+  bool join_flat(int a, int b) const;
   template <class Fn>
   void with_box(int face, int n, Fn& fn) const;
   // Node pairs (n, n) and (a, b) whose pairs together are all pairs, about `count` of them, for
   // threads to share.
   std::vector<std::array<int, 2>> tasks(int count) const;
   void find_connected_nodes();
+  void find_node_borders();
+  void find_refit_tasks();
+  // fit(n) for every node, children first: the subtrees of refit_roots_ on several threads, then the
+  // nodes above them.
+  template <class Fit>
+  void fit_nodes(Fit&& fit);
 
   const std::vector<std::array<int, 3>>* faces_ = nullptr;
   std::vector<int> order_;     // #F: the faces in tree order
   std::vector<int> position_;  // #F: each face's place in order_
   std::vector<int> leaf_of_;   // #F (tree order): the leaf that holds it
+  // Each node's border: the corners of its faces that also belong to a face outside it, sorted; node
+  // n's are border_[border_start_[n], border_start_[n + 1]). Two disjoint nodes share a corner only
+  // on both their borders.
+  std::vector<int> border_start_;
+  std::vector<int> border_;
   // tasks(kTasks), fixed with the tree. Threads take them round-robin and their sizes differ widely,
   // so there are many (docs/performance.md#avoiding-self-intersections).
   static constexpr int kTasks = 512;
   std::vector<std::array<int, 2>> tasks_;
+  // Subtrees a refit shares among threads (about kRefitTasks), each the nodes [root, end) (a subtree
+  // is a run of nodes: they are numbered depth first), and the nodes above them, children first.
+  static constexpr int kRefitTasks = 64;
+  std::vector<std::array<int, 2>> refit_roots_;
+  std::vector<int> refit_top_;
   std::vector<Box> face_box_;  // #F, in tree order
   std::vector<Eigen::Vector3d> face_area_;  // #F, in tree order: area vectors (twice the area, along the normal)
   std::vector<Node> nodes_;    // children after their parent (refit runs backwards)
@@ -133,14 +163,15 @@ void FaceBvh::within(int n, Fn& fn, bool skip_flat) const {
   }
   within(node.left, fn, skip_flat);
   within(node.right, fn, skip_flat);
-  between(node.left, node.right, fn);
+  between(node.left, node.right, fn, skip_flat);
 }
 
 template <class Fn>
-void FaceBvh::between(int a, int b, Fn& fn) const {
+void FaceBvh::between(int a, int b, Fn& fn, bool skip_flat) const {
   const Node& na = nodes_[a];
   const Node& nb = nodes_[b];
   if (!na.box.overlaps(nb.box)) return;
+  if (skip_flat && na.flat && nb.flat && join_flat(a, b)) return;
   if (na.left < 0 && nb.left < 0) {
     for (int i = na.begin; i < na.end; ++i) {
       if (!face_box_[i].overlaps(nb.box)) continue;
@@ -150,11 +181,11 @@ void FaceBvh::between(int a, int b, Fn& fn) const {
     return;
   }
   if (nb.left < 0 || (na.left >= 0 && na.end - na.begin >= nb.end - nb.begin)) {  // split the larger
-    between(na.left, b, fn);
-    between(na.right, b, fn);
+    between(na.left, b, fn, skip_flat);
+    between(na.right, b, fn, skip_flat);
   } else {
-    between(a, nb.left, fn);
-    between(a, nb.right, fn);
+    between(a, nb.left, fn, skip_flat);
+    between(a, nb.right, fn, skip_flat);
   }
 }
 
@@ -178,7 +209,7 @@ void FaceBvh::for_overlapping_pairs(Fn&& fn, bool skip_flat) const {
   parallel::for_tasks(static_cast<int>(tasks_.size()), nodes_.size() > 2048, [&](int t) {
     const auto pair = [&](int f, int g) { fn(t, f, g); };
     if (tasks_[t][0] == tasks_[t][1]) within(tasks_[t][0], pair, skip_flat);
-    else between(tasks_[t][0], tasks_[t][1], pair);
+    else between(tasks_[t][0], tasks_[t][1], pair, skip_flat);
   });
 }
 
