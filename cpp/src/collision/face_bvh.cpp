@@ -221,7 +221,9 @@ namespace {
 // than the conversion's rounding (half a float step, at most 2^-24 |x|) before it is converted, so
 // a box so rounded holds the double one. No branch: the conversion's rounding goes either way at
 // random, and a branch on it (or std::nextafter, a call into libm) was a tenth of a check's time on
-// the 43K armadillo. The tiny term keeps 0 on its side.
+// the 43K armadillo. The tiny term keeps 0 on its side. Beyond the float's range (far outside the
+// guard's frame, whose longest side is 1) a bound becomes infinite: such a box then overlaps every box
+// that also reaches past the range, so no pair there is missed either.
 constexpr double kOutwards = 1.0 / (1 << 23);
 float below(double x) { return static_cast<float>(x - (std::abs(x) * kOutwards + 1e-30)); }
 float above(double x) { return static_cast<float>(x + (std::abs(x) * kOutwards + 1e-30)); }
