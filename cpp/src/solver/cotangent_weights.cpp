@@ -20,4 +20,17 @@ TriangleWeights cotangent_weights(const Eigen::Vector3d e[3]) {
   return out;
 }
 
+int floor_negative_edge_weights(const MeshTopology& topo, std::vector<std::array<double, 3>>& slot_weight,
+                                std::vector<double>& edge_weight) {
+  int changed = 0;
+  for (size_t e = 0; e < edge_weight.size(); ++e) {
+    if (!(edge_weight[e] < kMinEdgeWeight)) continue;
+    const int begin = topo.edge_slot_start[e], end = topo.edge_slot_start[e + 1];
+    for (int i = begin; i < end; ++i) slot_weight[topo.edge_slots[i] / 3][topo.edge_slots[i] % 3] = kIllShapedWeight / (end - begin);
+    edge_weight[e] = kIllShapedWeight;
+    ++changed;
+  }
+  return changed;
+}
+
 }  // namespace gauss

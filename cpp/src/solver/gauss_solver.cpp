@@ -171,6 +171,7 @@ void GaussSolver::compute_rest_quantities() {
       edge_weight_[topo_.face_edge[f][k]] += tw.w[k];
     }
   }
+  floor_negative_edge_weights(topo_, slot_weight_, edge_weight_);
   update_face_coupling();
 }
 

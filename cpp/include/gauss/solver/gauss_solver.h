@@ -318,7 +318,7 @@ class GaussSolver {
   // What follows from these in a few operations is computed where it is used (face_coupling(), the
   // bending term's slot weights), or kept only while the steps are not lean (slot_rest(),
   // slot_edge_weight()): at sculpt scale every 8 bytes a face is 32 MB.
-  std::vector<std::array<double, 3>> slot_weight_;    // #F by 3: cot(opposite angle) / 2
+  std::vector<std::array<double, 3>> slot_weight_;    // #F by 3: cot(opposite angle) / 2, or cotangent_weights.h's floor
   std::vector<std::array<Eigen::Vector3d, 3>> slot_rest_;  // #F by 3: weight * rest edge vector (not lean)
   std::vector<double> edge_weight_;                  // #E: sum of the slot weights of the edge
   std::vector<std::array<double, 3>> slot_edge_weight_;  // #F by 3: edge_weight_ of each slot (not lean)
