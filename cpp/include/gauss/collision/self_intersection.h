@@ -176,6 +176,11 @@ class SelfIntersectionGuard {
   // An open fan is left out: a crack between two boundaries needs no thin face to close.
   std::vector<uint8_t> patch_corner_;
   static constexpr double kThinFace = 10 * kContactMargin;
+  // The band's half-width, half of cos(kFlatAngle) kThinFace, must exceed the margin. cos x >= 1 - x^2 / 2
+  // for every x, so this bound (2.5 kContactMargin at 1 rad) holds wherever the check passes, and it fails
+  // to compile if either constant moves too far (at 80 degrees: 0.13 kContactMargin by this bound).
+  static_assert(0.5 * (1 - FaceBvh::kFlatAngle * FaceBvh::kFlatAngle / 2) * kThinFace > kContactMargin,
+                "flat patches' faces sharing no corner could come within the contact margin unseen");
   std::vector<uint64_t> allowed_;         // sorted: in contact at the start
   std::vector<uint64_t> crossing_;        // sorted: crossing at the start, and the pairs crossings slid into
   std::vector<uint64_t> slid_;            // pairs a crossing slid into during the current limit()
