@@ -81,6 +81,12 @@ class FaceBvh {
     }
   };
 
+  // Radians (57 degrees): seen along the axis, a face's least altitude is then at least cos(1) = 0.54
+  // of its own, which keeps the faces of a flat patch that share no corner apart (self_intersection.h,
+  // kThinFace, checks the two at compile time). It was 80 degrees while the pairs between two nodes
+  // were all searched.
+  static constexpr double kFlatAngle = 1.0;
+
  private:
   struct Node {
     Box box;
@@ -93,10 +99,6 @@ class FaceBvh {
     Eigen::Vector3d area;  // sum of its faces' area vectors (the cone's axis)
     double angle;          // the cone's half-angle (pi when unknown)
   };
-  // Radians (57 degrees): seen along the axis, a face's least altitude is then at least cos(1) = 0.54
-  // of its own, which keeps the faces of a flat patch that share no corner apart (self_intersection.h,
-  // kThinFace). It was 80 degrees while the pairs between two nodes were all searched.
-  static constexpr double kFlatAngle = 1.0;
   static constexpr int kLeafSize = 4;
 
   int build(int begin, int end, int parent, const std::vector<Eigen::Vector3d>& centroid);
