@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <random>
 #include <vector>
 
@@ -35,6 +36,7 @@ double relative_rhs_difference(const gauss::TriangleMesh& m, unsigned seed) {
   std::vector<Vector3d> rest(nV);
   for (int v = 0; v < nV; ++v) rest[v] = Vector3d(m.V[3 * v], m.V[3 * v + 1], m.V[3 * v + 2]);
   std::vector<double> edge_weight(topo.edges.size(), 0.0);
+  std::vector<std::array<double, 3>> slot_weight(topo.faces.size());
   std::vector<Vector3d> expected(nV, Vector3d::Zero());
   std::mt19937 rng(seed);
   std::vector<Matrix3d> rotation(nV);
@@ -44,12 +46,12 @@ double relative_rhs_difference(const gauss::TriangleMesh& m, unsigned seed) {
     Vector3d e[3];
     for (int k = 0; k < 3; ++k) e[k] = rest[t[(k + 1) % 3]] - rest[t[k]];
     const gauss::TriangleWeights w = gauss::cotangent_weights(e);
-    for (int k = 0; k < 3; ++k) edge_weight[topo.face_edge[f][k]] += w.w[k];
+    for (int k = 0; k < 3; ++k) edge_weight[topo.face_edge[f][k]] += w.w[k], slot_weight[f][k] = w.w[k];
     const Matrix3d Rf = (rotation[t[0]] + rotation[t[1]] + rotation[t[2]]) / 3.0;
     // Vertex t[k] is the head of slot k-1 and the tail of slot k.
     for (int k = 0; k < 3; ++k) expected[t[k]] += Rf * (w.w[(k + 2) % 3] * e[(k + 2) % 3] - w.w[k] * e[k]);
   }
-  const gauss::CubicLocalStep cubic(topo, rest, edge_weight);
+  const gauss::CubicLocalStep cubic(topo, rest, edge_weight, slot_weight);
   double largest = 0, difference = 0;
   for (int v = 0; v < nV; ++v) {
     largest = std::max(largest, expected[v].cwiseAbs().maxCoeff());
@@ -72,7 +74,8 @@ TEST(CubicGlobalRhs, UnreferencedVertexGetsZero) {
   const gauss::MeshTopology topo = gauss::build_mesh_topology(nV, F.data(), m.num_faces());
   std::vector<Vector3d> rest(nV);
   for (int v = 0; v < nV; ++v) rest[v] = Vector3d(m.V[3 * v], m.V[3 * v + 1], m.V[3 * v + 2]);
-  const gauss::CubicLocalStep cubic(topo, rest, std::vector<double>(topo.edges.size(), 1.0));
+  const gauss::CubicLocalStep cubic(topo, rest, std::vector<double>(topo.edges.size(), 1.0),
+                                    std::vector<std::array<double, 3>>(topo.faces.size(), {0.5, 0.5, 0.5}));
   const std::vector<Matrix3d> rotation(nV, Matrix3d::Identity());
   EXPECT_EQ(cubic.global_rhs(nV - 1, rotation), Vector3d::Zero());
 }

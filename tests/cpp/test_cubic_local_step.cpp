@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -30,6 +31,7 @@ struct RestMesh {
   gauss::MeshTopology topo;
   std::vector<Vector3d> rest;
   std::vector<double> edge_weight;
+  std::vector<std::array<double, 3>> slot_weight;
 };
 
 RestMesh rest_mesh(const gauss::TriangleMesh& m, const Matrix3d& turn = Matrix3d::Identity()) {
@@ -39,12 +41,13 @@ RestMesh rest_mesh(const gauss::TriangleMesh& m, const Matrix3d& turn = Matrix3d
   for (int v = 0; v < m.num_vertices(); ++v)
     s.rest.push_back(turn * (0.5 * Vector3d(m.V[3 * v], m.V[3 * v + 1], m.V[3 * v + 2])));
   s.edge_weight.assign(s.topo.edges.size(), 0.0);
+  s.slot_weight.resize(s.topo.faces.size());
   for (size_t f = 0; f < s.topo.faces.size(); ++f) {
     const auto& t = s.topo.faces[f];
     Vector3d e[3];
     for (int k = 0; k < 3; ++k) e[k] = s.rest[t[(k + 1) % 3]] - s.rest[t[k]];
     const gauss::TriangleWeights w = gauss::cotangent_weights(e);
-    for (int k = 0; k < 3; ++k) s.edge_weight[s.topo.face_edge[f][k]] += w.w[k];
+    for (int k = 0; k < 3; ++k) s.edge_weight[s.topo.face_edge[f][k]] += w.w[k], s.slot_weight[f][k] = w.w[k];
   }
   return s;
 }
@@ -70,7 +73,7 @@ Fit fit(gauss::CubicLocalStep& cubic, const RestMesh& s, const std::vector<Vecto
 }
 
 gauss::CubicLocalStep styled(const RestMesh& s, double strength, const Matrix3d& frame) {
-  gauss::CubicLocalStep cubic(s.topo, s.rest, s.edge_weight);
+  gauss::CubicLocalStep cubic(s.topo, s.rest, s.edge_weight, s.slot_weight);
   cubic.set_vertex_styles(std::vector<double>(s.rest.size(), strength), std::vector<int>(s.rest.size(), 0), {frame});
   return cubic;
 }

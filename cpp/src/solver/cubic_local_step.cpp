@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "gauss/solver/closest_rotation.h"
-#include "gauss/solver/cotangent_weights.h"
 #include "gauss/util/parallel.h"
 
 namespace gauss {
@@ -25,10 +24,12 @@ Vector3d soft_threshold(const Vector3d& x, double k) {
 }  // namespace
 
 CubicLocalStep::CubicLocalStep(const MeshTopology& topo, const std::vector<Vector3d>& rest,
-                               const std::vector<double>& edge_weight) {
+                               const std::vector<double>& edge_weight,
+                               const std::vector<std::array<double, 3>>& slot_weight) {
   const int nV = topo.num_vertices;
   const int nF = static_cast<int>(topo.faces.size());
-  if (rest.size() != static_cast<size_t>(nV) || edge_weight.size() != topo.edges.size())
+  if (rest.size() != static_cast<size_t>(nV) || edge_weight.size() != topo.edges.size() ||
+      slot_weight.size() != topo.faces.size())
     throw std::invalid_argument("CubicLocalStep: the sizes of the mesh, rest positions and weights disagree");
   slot_rest_.resize(nF);
   std::vector<Vector3d> face_normal(nF);  // twice the area times the unit normal
@@ -53,7 +54,7 @@ CubicLocalStep::CubicLocalStep(const MeshTopology& topo, const std::vector<Vecto
     // Faces that cancel out (a folded sheet, a zero-area star) leave no direction to stylize.
     if (std::isfinite(len) && len > 1e-12 * twice_area && len > 1e-300) normal_[v] = sum / len;
   }
-  build_global_rhs_stars(topo, rest);
+  build_global_rhs_stars(topo, rest, slot_weight);
   weight_.assign(nV, 0.0);
   frame_.assign(nV, 0);
   frames_.assign(1, Matrix3d::Identity());
@@ -64,7 +65,8 @@ CubicLocalStep::CubicLocalStep(const MeshTopology& topo, const std::vector<Vecto
   reset();
 }
 
-void CubicLocalStep::build_global_rhs_stars(const MeshTopology& topo, const std::vector<Vector3d>& rest) {
+void CubicLocalStep::build_global_rhs_stars(const MeshTopology& topo, const std::vector<Vector3d>& rest,
+                                            const std::vector<std::array<double, 3>>& slot_weight) {
   const int nV = topo.num_vertices;
   const int nF = static_cast<int>(topo.faces.size());
   // Each face's corner vectors (w d^_prev - w d^_next) / 3, with the Laplacian's weights.
@@ -73,9 +75,9 @@ void CubicLocalStep::build_global_rhs_stars(const MeshTopology& topo, const std:
     const auto& t = topo.faces[f];
     Vector3d e[3];
     for (int k = 0; k < 3; ++k) e[k] = rest[t[(k + 1) % 3]] - rest[t[k]];
-    const TriangleWeights tw = cotangent_weights(e);
+    const std::array<double, 3>& w = slot_weight[f];
     // Corner k is the head of slot k-1 and the tail of slot k.
-    for (int k = 0; k < 3; ++k) corner[f][k] = (tw.w[(k + 2) % 3] * e[(k + 2) % 3] - tw.w[k] * e[k]) / 3.0;
+    for (int k = 0; k < 3; ++k) corner[f][k] = (w[(k + 2) % 3] * e[(k + 2) % 3] - w[k] * e[k]) / 3.0;
   }
   star_start_.assign(nV + 1, 0);
   star_.clear();

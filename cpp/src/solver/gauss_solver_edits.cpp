@@ -91,7 +91,7 @@ void GaussSolver::set_method(Method method) {
     check_memory(CubicLocalStep::bytes_needed(topo_.num_vertices, nF) + FixedPointIteration::carried_bytes(carried) +
                      static_cast<int64_t>(sizeof(Eigen::Matrix3d)) * nF,
                  "the cubic method's data for " + std::to_string(topo_.num_vertices) + " vertices");
-    cubic_ = CubicLocalStep(topo_, rest_, edge_weight_);
+    cubic_ = CubicLocalStep(topo_, rest_, edge_weight_, slot_weight_);
     face_scratch_.assign(nF, Eigen::Matrix3d::Zero());
     iteration_.prepare_carried(carried);
     cubic_ready_ = true;

@@ -67,8 +67,10 @@ class CubicLocalStep {
   // topo         the solver's mesh (faces #F by 3, vertex -> corners)
   // rest         #V by 3 rest positions in the solver's normalized frame (unit bounding box)
   // edge_weight  #E whole cotangent weights w_jk of the edges (topo.edges)
+  // slot_weight  #F by 3: each face's slot weights (cotangent_weights.h, floors included), summing to
+  //              edge_weight: the global step's right-hand side must use the Laplacian's weights
   CubicLocalStep(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& rest,
-                 const std::vector<double>& edge_weight);
+                 const std::vector<double>& edge_weight, const std::vector<std::array<double, 3>>& slot_weight);
 
   // Bytes the constructor allocates for a mesh of this size (its members and its one #F temporary,
   // rounded up): for a memory check before it runs.
@@ -113,7 +115,7 @@ class CubicLocalStep {
   // The right-hand side of ARAP's global step at vertex v (paper Eq. 27 without the edge term), given
   // every vertex's rotation R (#V): the sum over v's faces f of R_f (w d^_prev - w d^_next), with R_f
   // the mean rotation of f's three vertices, d^_prev and d^_next the rest edges of f that end and
-  // start at v, and w the face's own cotangent weights cot/2 (cotangent_weights.h, the Laplacian's).
+  // start at v, and w the face's slot weights (cotangent_weights.h, the Laplacian's).
   // Each face's share is linear in its three rotations, so the sum folds into one rest vector per
   // vertex m of v's star (m = v included): b_v = sum_m R_m g_vm. Why: this reads #V rotations and
   // ~7 precomputed vectors per vertex instead of writing and reading back a 3x3 block per face
@@ -128,7 +130,8 @@ class CubicLocalStep {
   const std::vector<double>& vertex_areas() const { return area_; }               // #V barycentric
 
  private:
-  void build_global_rhs_stars(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& rest);
+  void build_global_rhs_stars(const MeshTopology& topo, const std::vector<Eigen::Vector3d>& rest,
+                              const std::vector<std::array<double, 3>>& slot_weight);
 
   std::vector<Eigen::Vector3d> normal_;                       // #V n_i (zero where undefined)
   std::vector<double> area_;                                  // #V a_i
