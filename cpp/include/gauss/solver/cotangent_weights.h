@@ -30,11 +30,12 @@ constexpr double kIllShapedWeight = 1e-3;
 // more than 180 degrees have a negative weight, and Eq. 6's edge pull lambda w / 2 |e - e*|^2 is then
 // no penalty: the edge step and the normal step, derived for w > 0, push such an edge away from its
 // target. Where the neighbours' positive weights dominate, the run settles all the same (2-14% of the
-// edges of the meshes in ../shared/meshes are negative, down to -3.6 on the scans and the remeshed
-// Spot). Below -5 an edge has an angle beyond ~174 degrees across it, the cap of a hole filler's fan
-// or of a scan's seam: a few such edges (7 of the hole-filled bunny's 104K, 9 of the camel head's 34K
-// below -10) kept those meshes from ever settling, their fill moving up to a tenth of the mesh's size
-// at every step; with them floored both settle in about 100 steps (docs/robustness.md).
+// edges of the meshes in ../shared/meshes are negative: down to -0.6 on Spot, -3.6 on the 43K
+// armadillo scan). Below -5 one of the edge's two opposite angles exceeds ~169 degrees (its cotangent
+// is below -5), the cap of a hole filler's fan or of a scan's seam: a few such edges (7 of the
+// hole-filled bunny's 104K, 9 of the camel head's 34K below -10) kept those meshes from ever
+// settling, their fill moving up to a tenth of the mesh's size at every step; with them floored both
+// settle in about 100 steps (docs/robustness.md).
 constexpr double kMinEdgeWeight = -5.0;
 
 struct TriangleWeights {
