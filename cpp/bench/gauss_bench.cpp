@@ -1,7 +1,7 @@
 // gauss_bench MESH [--method gauss|cubic] [--style NAME] [--lambda L] [--sigma S] [--mu M] [--steps N]
 //             [--admm N] [--until TOL] [--acceleration on|off] [--avoid-self-intersections [--contact-stiffness K]]
 //             [--resolution-independent [--reference-face-area A]] [--square-flat-regions]
-//             [--threads N] [--out OUT.obj]   (defaults: the solver's, printed by usage())
+//             [--paper-step-any-sigma] [--threads N] [--out OUT.obj]   (defaults: the solver's, printed by usage())
 // Times set-up and steps of the solver on one mesh and reports how far the style took hold.
 // --lambda is the lambda of the chosen method (settings::lambda or settings::cubic_lambda); the cubic
 // method uses the style's mu and rotation only, and its share is measured against the cube's normals.
@@ -24,6 +24,8 @@
 // --square-flat-regions squares the outlines of large flat regions (settings::square_flat_regions,
 // flat_regions.h). Every run on a mesh with a large flat region prints squareness: IN -> OUT, the
 // squareness (mesh/squareness.h) of the faces facing along the largest region's normal.
+// --paper-step-any-sigma takes the paper's normal step above settings::paper_step_max_sigma too, as
+// before 2026-12-07 (settings::paper_step_any_sigma).
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -67,7 +69,7 @@ int usage() {
                "                   [--acceleration %s] [--avoid-self-intersections [--contact-stiffness K (default %g)]]\n"
                "                   [--resolution-independent [--weigh-finer-faces]]\n"
                "                   [--reference-face-area A (default %g)] [--square-flat-regions]\n"
-               "                   [--threads N] [--out OUT.obj]\n",
+               "                   [--paper-step-any-sigma] [--threads N] [--out OUT.obj]\n",
                settings::default_method, settings::default_preset, settings::lambda.default_value,
                settings::cubic_lambda.default_value, settings::sigma.default_value, settings::mu.default_value,
                kDefaultSteps, static_cast<int>(settings::admm_iterations.default_value),
@@ -96,6 +98,7 @@ int main(int argc, char** argv) {
   double reference_face_area = settings::reference_face_area;
   double contact_stiffness = gauss::ContactSprings::kDefaultStiffness;
   bool square_flat_regions = settings::square_flat_regions.default_value;
+  bool paper_step_any_sigma = settings::paper_step_any_sigma.default_value;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--avoid-self-intersections") {  // a flag without a value
@@ -112,6 +115,10 @@ int main(int argc, char** argv) {
     }
     if (a == "--square-flat-regions") {
       square_flat_regions = true;
+      continue;
+    }
+    if (a == "--paper-step-any-sigma") {
+      paper_step_any_sigma = true;
       continue;
     }
     if (i + 1 >= argc) return usage();
@@ -169,6 +176,7 @@ int main(int argc, char** argv) {
     solver.set_weigh_finer_faces(weigh_finer_faces);
     solver.set_reference_face_area(reference_face_area);
     solver.set_square_flat_regions(square_flat_regions);
+    solver.set_paper_step_any_sigma(paper_step_any_sigma);
     const double setup_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
     if (until_converged) solver.set_tolerance(until);  // held_back() compares with it
@@ -266,6 +274,8 @@ int main(int argc, char** argv) {
       return p;
     };
     std::printf("avoid_self_intersections: %s\n", avoid_self_intersections ? "on" : "off");
+    std::printf("normal_step: %s\n", !cubic && g.sigma() > settings::paper_step_max_sigma && !g.developable() &&
+                                               !paper_step_any_sigma ? "trust region on the sphere" : "the paper's");
     std::printf("resolution_independent: %s (reference face area %g%s)\n", resolution_independent ? "on" : "off",
                 reference_face_area, weigh_finer_faces ? ", finer faces weighed" : "");
     std::printf("intersecting_pairs: %lld -> %lld\n",

@@ -8,8 +8,12 @@ small gradient step, and those that switched between the two over the last step 
 
 usage: measure_sigma.py MESH [MESH...] [--sigmas 4 8 12 20] [--style cube] [--lam 4] [--tol 1e-3]
                         [--cap 1500] [--window 20] [--resolution-independent] [--ramp STEPS] [--plain]
+                        [--paper-step]
 Runs the accelerated iteration as the add-on does (--plain: without it). --ramp: continuation in
-sigma. Imports gauss_core from $GAUSS_BUILD_DIR/python
+sigma. --paper-step: the paper's normal step at every sigma (paper_step_any_sigma), as before
+2026-12-07; without it the solver takes its trust-region step above gauss_core.PAPER_STEP_MAX_SIGMA,
+and the uphill and switching columns still count the paper's step, which that run no longer takes.
+Imports gauss_core from $GAUSS_BUILD_DIR/python
 (default: <repo>/build/python).
 """
 import argparse
@@ -68,13 +72,13 @@ def uphill_newton(rest, U, F, style, lam):
         return ~(ok & (np.einsum("ij,ij->i", d, grad) >= 0))
 
 
-def run(V, F, style, sigma, lam, tol, cap, window, independent=False, ramp=0, plain=False):
+def run(V, F, style, sigma, lam, tol, cap, window, independent=False, ramp=0, plain=False, paper_step=False):
     """(steps, converged, share, flipping share over the last `window` steps, last reldV, uphill share,
     switching share): uphill, the faces whose normal step falls back to the gradient at the last step
     (uphill_newton); switching, those that changed between Newton and the fallback over the last step.
     ramp > 0: continuation, sigma rising linearly from the default to `sigma` over `ramp` steps, and
     the run does not stop before it ends."""
-    solver = gauss_core.Solver(V, F, lam=lam, resolution_independent=independent)
+    solver = gauss_core.Solver(V, F, lam=lam, resolution_independent=independent, paper_step_any_sigma=paper_step)
     if plain:
         solver.acceleration = False
     s = gauss_core.Style.preset(style, sigma=sigma)
@@ -117,6 +121,7 @@ def main():
     p.add_argument("--resolution-independent", action="store_true")
     p.add_argument("--ramp", type=int, default=0, help="continuation in sigma over this many steps")
     p.add_argument("--plain", action="store_true", help="without the acceleration (momentum)")
+    p.add_argument("--paper-step", action="store_true", help="the paper's normal step at every sigma")
     a = p.parse_args()
     print("| mesh | sigma | steps | share | flipping faces | last reldV | uphill Newton | switching |")
     print("|---|---|---|---|---|---|---|---|")
@@ -124,7 +129,7 @@ def main():
         V, F = read_obj(path)
         for sigma in a.sigmas:
             steps, ok, share, flips, reldv, up, switching = run(V, F, a.style, sigma, a.lam, a.tol, a.cap, a.window,
-                                                 a.resolution_independent, a.ramp, a.plain)
+                                                 a.resolution_independent, a.ramp, a.plain, a.paper_step)
             print(f"| {pathlib.Path(path).stem} | {sigma:g} | {steps if ok else f'not within {steps}'} | "
                   f"{share:.4f} | {flips:.3f} | {reldv:.2g} | {up:.3f} | {switching:.3f} |", flush=True)
 

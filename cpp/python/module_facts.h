@@ -1,6 +1,7 @@
 #pragma once
 // What gauss_core exports from the solver's tables (settings.h, presets.h): PRESETS, METHODS, DEFAULTS,
-// LIMITS, SIZE_LIMITS and PRESET_LAMBDA, and the reading of a method's name. For the Python module only.
+// LIMITS, SIZE_LIMITS, PRESET_LAMBDA and
+// PAPER_STEP_MAX_SIGMA, and the reading of a method's name. For the Python module only.
 #include <pybind11/pybind11.h>
 
 #include <algorithm>
@@ -58,6 +59,8 @@ inline void export_facts(py::module_& m) {
   py::dict preset_lambda;
   preset_lambda["sheet_metal"] = settings::sheet_metal_lambda;
   m.attr("PRESET_LAMBDA") = preset_lambda;
+  // Above this sigma the normal step solves Eq. 18 on the sphere (normal_step.h, trust_region_normal).
+  m.attr("PAPER_STEP_MAX_SIGMA") = settings::paper_step_max_sigma;
 }
 
 }  // namespace gauss_python

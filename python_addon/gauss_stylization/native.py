@@ -152,6 +152,16 @@ def preset_strengths():
     return {name: (module.Style.preset(name).sigma, lam) for name, lam in module.PRESET_LAMBDA.items()}
 
 
+def paper_step_max_sigma():
+    """The sigma above which the solver takes a face's normal step on the sphere within a trust region
+    instead of the paper's step (gauss_core.PAPER_STEP_MAX_SIGMA; the option paper_step_any_sigma keeps the paper's);
+    None when the module cannot load."""
+    try:
+        return float(core().PAPER_STEP_MAX_SIGMA)
+    except NativeModuleError:
+        return None
+
+
 def read_facts_file(path, import_error=None):
     """Facts from a core_facts.json (keys DEFAULTS, LIMITS, PRESETS, METHODS, SIZE_LIMITS)."""
     try:

@@ -81,7 +81,9 @@ def mesh_kind(V, F):
 
 
 def _style(option):
-    return gauss_core.Style.preset(option.preset)
+    if option.sigma is None:
+        return gauss_core.Style.preset(option.preset)
+    return gauss_core.Style.preset(option.preset, sigma=option.sigma)
 
 
 def _bounded(V, W):

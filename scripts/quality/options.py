@@ -46,6 +46,7 @@ class Option:
     preset: str = "cube"
     method: str = "gauss"
     lam: Optional[float] = None  # None: the preset's gauss_core.PRESET_LAMBDA, else DEFAULTS['lam']
+    sigma: Optional[float] = None  # None: the preset's own
     keywords: dict = field(default_factory=dict)  # more gauss_core.Solver keywords
     weights: Optional[Callable] = None  # (V, F) -> (#F, 1) face weights for set_face_weights
     pins: Optional[Callable] = None  # (V, F) -> pinned vertex indices
@@ -76,6 +77,9 @@ OPTIONS = [
     Option("cube painted 0-1", weights=gradient_weights, keywords=INDEPENDENT, tags=("paint",),
            plain="cube +independent"),
     Option("cube pinned 5%", pins=lowest_vertices(0.05), plain="cube"),
+    # Sharper than gauss_core.PAPER_STEP_MAX_SIGMA: the normal's step taken on the sphere.
+    Option("cube sigma 12", sigma=12.0, tags=("sigma",), plain="cube"),
+    Option("tetrahedron sigma 20", preset="tetrahedron", sigma=20.0, tags=("sigma",), fast=False),
     Option("sheet metal", preset="sheet_metal"),
     Option("cube +square flat", keywords=SQUARE, tags=("square",), plain="cube"),
     Option("cubic +square flat", method="cubic", keywords=SQUARE, tags=("square",), plain="cubic"),

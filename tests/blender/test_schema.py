@@ -112,6 +112,7 @@ LIVE_CHANGES = {
     ("object", "resolution_independent"): ({}, {}, False),  # on for a new object
     ("object", "weigh_finer_faces"): ({}, {}, True),  # Suzanne's faces are finer than the reference
     ("object", "square_flat_regions"): ({}, {}, True),  # on the mesh of LIVE_MESHES
+    ("object", "paper_step_any_sigma"): (dict(sigma=12.0), {}, True),  # acts above PAPER_STEP_MAX_SIGMA
 }
 # The mesh a live change is tried on where Suzanne would not show it (default: helpers.suzanne(levels=1)).
 def _half_painted_suzanne():

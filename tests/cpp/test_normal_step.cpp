@@ -18,6 +18,7 @@ namespace test_normal_step {
 using gauss::newton_normal;
 using gauss::PreferenceFunction;
 using gauss::solve_symmetric3;
+using gauss::trust_region_normal;
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 
@@ -238,6 +239,76 @@ TEST(NewtonNormal, AlwaysReturnsAUnitVector) {
     const Vector3d m = newton_normal(g, n, es, lw, u);
     ASSERT_TRUE(m.allFinite());
     ASSERT_NEAR(m.norm(), 1.0, 1e-14);
+  }
+}
+
+TEST(TrustRegionNormal, NeverRaisesLnAndReachesTheBruteForceMinimizerAtAnySigma) {
+  // Above settings::paper_step_max_sigma, faces anywhere between the bumps: each call lowers L_n or
+  // keeps n, and a few calls (a run makes one per step) settle at the minimizer brute force finds
+  // within one bump's width, where the Riemannian gradient vanishes.
+  std::mt19937 rng(11);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform(0, 1);
+  for (const char* preset : {"cube", "tetrahedron", "octahedron"}) {
+    for (double sigma : {9.0, 12.0, 20.0, 60.0}) {
+      const PreferenceFunction g = style(preset, sigma);
+      for (int trial = 0; trial < 12; ++trial) {
+        const Vector3d preferred = g.normals()[trial % g.normals().size()];
+        const Vector3d axis = Vector3d(normal(rng), normal(rng), normal(rng)).cross(preferred).normalized();
+        const Vector3d start = Eigen::AngleAxisd(25 * M_PI / 180 * uniform(rng), axis) * preferred;
+        const LocalProblem lp = face_problem(g, start, 0.01, rng);
+        const std::string where = std::string(preset) + " sigma " + std::to_string(sigma) + " trial " + std::to_string(trial);
+        Vector3d n = start;
+        double value = lp.objective(n);
+        for (int call = 0; call < 10; ++call) {
+          const Vector3d next = trust_region_normal(lp.g, n, lp.es, lp.lw, lp.u);
+          ASSERT_NEAR(next.norm(), 1.0, 1e-14) << where;
+          ASSERT_LE(lp.objective(next), value) << where << " call " << call;
+          n = next;
+          value = lp.objective(n);
+        }
+        const Vector3d grad = lp.gradient_fd(n, 1e-7);
+        EXPECT_LT((grad - grad.dot(n) * n).norm(), 1e-5 * sigma) << where;
+        // The start may lie outside every bump's reach (g ~ 0 there at sigma 60): then n stays nearby.
+        if (g.value(start) > 1e-3) {
+          const Vector3d best = lp.brute_force_minimizer(preferred, 40 * M_PI / 180);
+          EXPECT_LT(angle(n, best), 2e-3) << where;
+        }
+      }
+    }
+  }
+}
+
+TEST(TrustRegionNormal, IsAFixedPointWhereLnIsStationary) {
+  // Started at its own result, the step stays put: a run whose normals settled does not move them.
+  std::mt19937 rng(12);
+  const PreferenceFunction g = style("cube", 20.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    const LocalProblem lp = face_problem(g, Vector3d(1, 0.2, 0.1 * trial).normalized(), 0.02, rng);
+    Vector3d n = Vector3d(1, 0.2, 0.1 * trial).normalized();
+    for (int call = 0; call < 20; ++call) n = trust_region_normal(lp.g, n, lp.es, lp.lw, lp.u);
+    EXPECT_LT(angle(trust_region_normal(lp.g, n, lp.es, lp.lw, lp.u), n), 1e-9) << trial;
+  }
+}
+
+TEST(TrustRegionNormal, AlwaysReturnsAUnitVector) {
+  std::mt19937 rng(4);
+  std::normal_distribution<double> normal;
+  for (double sigma : {9.0, 100.0, 1000.0}) {
+    const PreferenceFunction g = style("dodecahedron", sigma);
+    for (int trial = 0; trial < 500; ++trial) {
+      const Vector3d n = Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+      Vector3d es[3];
+      double lw[3], u[3];
+      for (int k = 0; k < 3; ++k) {
+        es[k] = Vector3d(normal(rng), normal(rng), normal(rng)) * std::pow(10.0, trial % 9 - 6);
+        lw[k] = std::abs(normal(rng)) * std::pow(10.0, trial % 5);
+        u[k] = normal(rng);
+      }
+      const Vector3d m = trust_region_normal(g, n, es, lw, u);
+      ASSERT_TRUE(m.allFinite());
+      ASSERT_NEAR(m.norm(), 1.0, 1e-14);
+    }
   }
 }
 

@@ -142,8 +142,26 @@ inline constexpr Option square_flat_regions{
     "methods: the faces around each region turn about its normal towards the axes of its outline "
     "(docs/styles.md, 'Square Flat Regions'). False: no change, bit for bit."};
 
-inline constexpr const Option* options[] = {&keep_volume, &acceleration, &avoid_self_intersections,
-                                            &resolution_independent, &weigh_finer_faces, &square_flat_regions};
+// Off by default: the normal step before 2026-12-07, kept so that files and recipes with a sharper
+// style replay as they were (the add-on's settings versioning sets it for them; docs/limitations.md).
+inline constexpr Option paper_step_any_sigma{
+    "paper_step_any_sigma", false,
+    "Take the paper's one Newton step for a face's normal (Eqs. 21-22) at every sigma, as before 2026-12-07 "
+    "(files saved then keep their result with it). False: above sigma 8 the step is taken on the sphere "
+    "within one bump's width instead, since there the paper's step makes faces jump between preferred normals "
+    "at every step and a run never settles (docs/limitations.md). At sigma 8 and below, and for Sheet Metal, "
+    "it changes nothing."};
+
+inline constexpr const Option* options[] = {&keep_volume,       &acceleration,      &avoid_self_intersections,
+                                            &resolution_independent, &weigh_finer_faces, &square_flat_regions,
+                                            &paper_step_any_sigma};
+
+// Up to this sigma a face's normal takes the paper's one Newton step (Eqs. 21-22), bit for bit; above it
+// (styles with fixed directions, without paper_step_any_sigma) a trust-region Newton step on the sphere
+// (normal_step.h: trust_region_normal). On Spot, the 6K bunny and Suzanne no face's paper step falls
+// back to the gradient at sigma 4 and 8, and from 12 on runs stop settling (docs/limitations.md, "High
+// sigma").
+inline constexpr double paper_step_max_sigma = 8.0;
 
 // The face area (solver frame: longest bounding-box side 1) at which Resolution Independent changes
 // nothing; finer meshes are stylized as a mesh of this density is. Why this value:
@@ -238,7 +256,9 @@ constexpr auto solver_settings() {
                              &Solver::set_resolution_independent),
                          row(weigh_finer_faces, &Solver::weigh_finer_faces, &Solver::set_weigh_finer_faces),
                          row(square_flat_regions, &Solver::square_flat_regions,
-                             &Solver::set_square_flat_regions));
+                             &Solver::set_square_flat_regions),
+                         row(paper_step_any_sigma, &Solver::paper_step_any_sigma,
+                             &Solver::set_paper_step_any_sigma));
 }
 
 // Every scalar read-out of the solver (arrays, dicts and methods are bound by hand in cpp/python/).

@@ -49,6 +49,12 @@ void GaussSolver::set_weigh_finer_faces(bool on) {
   if (resolution_independent_ && method_ == Method::gauss) iteration_.invalidate();
 }
 
+void GaussSolver::set_paper_step_any_sigma(bool on) {
+  if (on == paper_step_any_sigma_) return;
+  paper_step_any_sigma_ = on;
+  if (method_ == Method::gauss) iteration_.invalidate();
+}
+
 void GaussSolver::set_square_flat_regions(bool on) {
   if (on == square_flat_regions_) return;
   square_flat_regions_ = on;

@@ -126,6 +126,21 @@ def _old_rule_shown(name):
     return lambda settings: settings.resolution_independent and getattr(settings, name) and not is_cubic(settings)
 
 
+def _paper_step_acts(settings):
+    """Does paper_step_any_sigma change a run of these settings (an object's, or a dump of them, whose
+    slots are dicts)? With the Gauss method, where a slot with fixed directions is sharper than the
+    solver's limit (native.paper_step_max_sigma; without the module: wherever such a slot exists)."""
+    if is_cubic(settings):
+        return False
+    limit = native.paper_step_max_sigma()
+    own_sigma = native.preset_strengths()  # the presets without fixed directions (Sheet Metal)
+
+    def value(slot, name):
+        return slot[name] if isinstance(slot, dict) else getattr(slot, name)
+    return any((limit is None or value(slot, "sigma") > limit) and value(slot, "preset").lower() not in own_sigma
+               for slot in settings.styles)
+
+
 def _is_custom(slot):
     return slot.preset == CUSTOM
 
@@ -253,6 +268,13 @@ OBJECT = (
          "reference density by their area. Untick for today's rule, with which more runs settle "
          "(docs/resolution.md)", since=3, before=True, before_where=lambda s: s.resolution_independent,
          live=Live.SETTER, panel=Panel.SOLVER, shown=_old_rule_shown("weigh_finer_faces")),
+    # The normal step before settings version 5, which objects saved under it with a sharp style keep.
+    Bool("paper_step_any_sigma", "Paper's Step at Any Sigma (Old)", "The normal step as it was before "
+         "2026-12-07, which this object was saved with: the paper's one Newton step at every Sigma. Above Sigma "
+         "8 it makes faces jump between preferred normals and a run never settles. Untick for today's step, "
+         "which settles at any Sigma (docs/limitations.md)", since=5, before=True, before_where=_paper_step_acts,
+         live=Live.SETTER, panel=Panel.SOLVER,
+         shown=lambda s: s.paper_step_any_sigma and _paper_step_acts(s)),
     Bool("square_flat_regions", "Square Flat Regions", "Give large flat regions (a cap, a lid, a table top) "
          "straight, square outlines instead of round ones: the faces around each turn towards the axes of its "
          "outline, with either method (docs/styles.md, Square Flat Regions)", live=Live.SETTER,

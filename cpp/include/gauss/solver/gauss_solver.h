@@ -131,6 +131,11 @@ class GaussSolver {
   // preference by its area, the finer ones too.
   void set_weigh_finer_faces(bool on);
   bool weigh_finer_faces() const { return weigh_finer_faces_; }
+  // settings::paper_step_any_sigma: the paper's normal step at every sigma, as before 2026-12-07; off,
+  // faces whose style has fixed directions and a sigma above settings::paper_step_max_sigma take a
+  // trust-region step on the sphere instead (normal_step.h: trust_region_normal).
+  void set_paper_step_any_sigma(bool on);
+  bool paper_step_any_sigma() const { return paper_step_any_sigma_; }
   // The face area (solver frame) at which Resolution Independent changes nothing; by default
   // settings::reference_face_area. Changeable to measure the choice (gauss_bench --reference-face-area);
   // throws std::invalid_argument unless positive and finite.
@@ -288,7 +293,8 @@ class GaussSolver {
   void styles_changed();
   // The highest style index any face uses (-1 if none).
   int highest_face_style() const;
-  // The Gauss method's normal update (newton_normal) for face f of style code s (face_style_).
+  // The Gauss method's normal update for face f of style code s (face_style_): newton_normal, or
+  // trust_region_normal where the style is sharper than settings::paper_step_max_sigma.
   Eigen::Vector3d normal_update(int f, int s, const Eigen::Vector3d& n, const Eigen::Vector3d* es, const double* lw,
                                 const double* u) const;
   // While a developable or gauss_map style is set: preferred_normal_ from the current vertices (with a
@@ -372,6 +378,7 @@ class GaussSolver {
   bool keep_volume_ = settings::keep_volume.default_value;
   bool resolution_independent_ = settings::resolution_independent.default_value;
   bool weigh_finer_faces_ = settings::weigh_finer_faces.default_value;
+  bool paper_step_any_sigma_ = settings::paper_step_any_sigma.default_value;
   double reference_face_area_ = settings::reference_face_area;
   std::unique_ptr<SelfIntersectionGuard> guard_;     // while avoid_self_intersections is on
   std::vector<Eigen::Vector3d> safe_;                // #V while it is on: X before the step
