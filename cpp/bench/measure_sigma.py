@@ -3,8 +3,8 @@
 10 degrees of the style's normals, and the faces that flip: over the last --window steps, the share of
 faces whose nearest preferred normal changed to another and back (A -> B -> A) between steps; then
 the faces whose normal step (Eqs. 21-22) is not a descent step at the end, so that it falls back to a
-small gradient step, and those that switched between the two over the last step (the table under
-*High sigma never converges* in docs/limitations.md).
+small gradient step, and those that switched between the two over the last step (the tables of
+docs/high_sigma.md).
 
 usage: measure_sigma.py MESH [MESH...] [--sigmas 4 8 12 20] [--style cube] [--lam 4] [--tol 1e-3]
                         [--cap 1500] [--window 20] [--resolution-independent] [--ramp STEPS] [--plain]

@@ -1,4 +1,4 @@
-// High sigma (docs/limitations.md, "High sigma"): above settings::paper_step_max_sigma the paper's one
+// High sigma (docs/high_sigma.md): above settings::paper_step_max_sigma the paper's one
 // Newton step per face made faces jump between preferred normals at every step and runs never settled;
 // a trust-region Newton step on the sphere (trust_region_normal) settles them. At sigma 8 and below, and for
 // Sheet Metal, nothing changes, and paper_step_any_sigma gives the old step back.

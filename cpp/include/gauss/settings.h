@@ -143,13 +143,13 @@ inline constexpr Option square_flat_regions{
     "(docs/styles.md, 'Square Flat Regions'). False: no change, bit for bit."};
 
 // Off by default: the normal step before 2026-12-07, kept so that files and recipes with a sharper
-// style replay as they were (the add-on's settings versioning sets it for them; docs/limitations.md).
+// style replay as they were (the add-on's settings versioning sets it for them; docs/high_sigma.md).
 inline constexpr Option paper_step_any_sigma{
     "paper_step_any_sigma", false,
     "Take the paper's one Newton step for a face's normal (Eqs. 21-22) at every sigma, as before 2026-12-07 "
     "(files saved then keep their result with it). False: above sigma 8 the step is taken on the sphere "
     "within one bump's width instead, since there the paper's step makes faces jump between preferred normals "
-    "at every step and a run never settles (docs/limitations.md). At sigma 8 and below, and for Sheet Metal, "
+    "at every step and a run never settles (docs/high_sigma.md). At sigma 8 and below, and for Sheet Metal, "
     "it changes nothing."};
 
 inline constexpr const Option* options[] = {&keep_volume,       &acceleration,      &avoid_self_intersections,
@@ -159,8 +159,7 @@ inline constexpr const Option* options[] = {&keep_volume,       &acceleration,  
 // Up to this sigma a face's normal takes the paper's one Newton step (Eqs. 21-22), bit for bit; above it
 // (styles with fixed directions, without paper_step_any_sigma) a trust-region Newton step on the sphere
 // (normal_step.h: trust_region_normal). On Spot, the 6K bunny and Suzanne no face's paper step falls
-// back to the gradient at sigma 4 and 8, and from 12 on runs stop settling (docs/limitations.md, "High
-// sigma").
+// back to the gradient at sigma 4 and 8, and from 12 on runs stop settling (docs/high_sigma.md).
 inline constexpr double paper_step_max_sigma = 8.0;
 
 // The face area (solver frame: longest bounding-box side 1) at which Resolution Independent changes

@@ -48,8 +48,8 @@ Eigen::Vector3d newton_normal(const PreferenceFunction* styles, const StyleShare
 // lowers L_n (retried at smaller radii, else n stays). The paper's step solves with the 3D Hessian, whose
 // tangent part is the edge coupling less the other bumps' pull: above settings::paper_step_max_sigma the
 // two cancel, its steps turn huge or uphill, faces jump between bumps and switch between Newton and the
-// fallback at every step, and a run never settles. This one settles at any sigma (docs/limitations.md,
-// "High sigma"). Arguments as newton_normal's.
+// fallback at every step, and a run never settles. This one settles at any sigma (docs/high_sigma.md).
+// Arguments as newton_normal's.
 Eigen::Vector3d trust_region_normal(const PreferenceFunction& style, const Eigen::Vector3d& n, const Eigen::Vector3d* es,
                                     const double* lw, const double* u, const Eigen::Vector3d* preferred = nullptr);
 Eigen::Vector3d trust_region_normal(const PreferenceFunction* styles, const StyleShare* shares, int count,
