@@ -2,7 +2,8 @@
 label fits the sidebar's default width, the Gauss sphere highlights the selected custom normal
 and labels the axes, draw callbacks leave the gpu state as they found it, the live run's "settling"
 row has its numbers as a tooltip, slot names and Custom normals are readable in their lists, a
-bake's start leaves the sub-panels in place; and screenshots of the sidebar (idle, live run, a
+bake's start leaves the sub-panels in place, a slot at Sigma 12 settles live and an object that kept the
+paper's normal step shows it in the Solver panel (sidebar_old_step.png); and screenshots of the sidebar (idle, live run, a
 Custom slot with 20 normals, the slot list, the Bake panel, the settling tooltip, the sidebar's
 first drawings of a bake: bake_start_*.png). Run by
 run_windowed.sh after the other parts, with windowed_kit.py's helpers as ``d``:
@@ -26,7 +27,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import windowed_kit as d  # noqa: E402  (also sets up the paths and the window options)
 import rig  # noqa: E402
-from panel_recorder import draw, labels  # noqa: E402
+from panel_recorder import draw, labels, props  # noqa: E402
 from windowed_actions import area_screenshot  # noqa: E402
 
 from gauss_stylization import settings_io, ui  # noqa: E402  (windowed_kit put the add-on on sys.path)
@@ -330,6 +331,39 @@ def live_run_shows_convergence(name):
     obj.gauss_stylization.tolerance = 1e-3
 
 
+def sharp_style_settles_and_the_old_step_shows(name):
+    """A slot at Sigma 12 (above gauss_core.PAPER_STEP_MAX_SIGMA) settles in a live run; an object that
+    kept the paper's step from an older file shows it in the Solver panel (sidebar_old_step.png)."""
+    obj = d.activate(bpy.data.objects[name])
+    settings = obj.gauss_stylization
+    settings.pin_group = ""
+    settings_io.apply_dict(settings, {"styles": [{"preset": 'CUBE', "sigma": 12.0}]})
+    original = d.coords(obj)
+    yield from d.live_run(400)
+    op = d.live_operator()
+    d.check("a live run at Sigma 12 settles", op is not None and op.session is not None and op.session.converged,
+            "steps %s" % (op.session.steps if op and op.session else None))
+    yield from d.end_with('ESC', "Esc after the Sigma 12 run restores the mesh", name, original)
+    settings.paper_step_any_sigma = True  # what an object of settings version 4 loads with
+    scroll_sidebar(15)  # the Solver panel is below the Styles panel
+    yield from sidebar_shot("sidebar_old_step.png")
+    scroll_sidebar(-15)
+    shown = labels_and_props(ui.VIEW3D_PT_gauss_solver)
+    d.check("the Solver panel shows the old step where it acts", "paper_step_any_sigma" in shown, str(shown))
+    # Checkbox texts are cut with an ellipsis; this row's is no wider than Resolution Independent's above it,
+    # which the screenshot shows whole.
+    texts = [settings.bl_rna.properties[key].name for key in ("paper_step_any_sigma", "resolution_independent")]
+    d.check("the old step's checkbox text is not cut", text_width(texts[0]) <= text_width(texts[1]), str(texts))
+    settings.paper_step_any_sigma = False
+    settings.styles.clear()
+
+
+def labels_and_props(panel):
+    area, _ = d.view3d()
+    with bpy.context.temp_override(window=d.window(), area=area, region=sidebar()):
+        return props(draw(panel))
+
+
 def settling_tooltip():
     """Hover over the sidebar's "settling" row until Blender shows its tooltip (the numbers);
     the 3D view with it goes to BUILD/screenshots/settling_tooltip.png."""
@@ -490,6 +524,7 @@ def scenario():
     bpy.utils.unregister_class(VIEW3D_PT_gauss_redraw_probe)
     yield from labels_fit_the_sidebar(name)
     yield from live_run_shows_convergence(name)
+    yield from sharp_style_settles_and_the_old_step_shows(name)
     yield from gpu_state_is_restored(name)
     yield from sphere_highlights_and_axes(name)
     yield from slot_names_and_normals_fit(name)

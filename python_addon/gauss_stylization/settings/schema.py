@@ -269,7 +269,7 @@ OBJECT = (
          "(docs/resolution.md)", since=3, before=True, before_where=lambda s: s.resolution_independent,
          live=Live.SETTER, panel=Panel.SOLVER, shown=_old_rule_shown("weigh_finer_faces")),
     # The normal step before settings version 5, which objects saved under it with a sharp style keep.
-    Bool("paper_step_any_sigma", "Paper's Step at Any Sigma (Old)", "The normal step as it was before "
+    Bool("paper_step_any_sigma", "Paper's Step (Old)", "The normal step as it was before "
          "2026-12-07, which this object was saved with: the paper's one Newton step at every Sigma. Above Sigma "
          "8 it makes faces jump between preferred normals and a run never settles. Untick for today's step, "
          "which settles at any Sigma (docs/high_sigma.md)", since=5, before=True, before_where=_paper_step_acts,
