@@ -71,7 +71,7 @@ constexpr int kTrustRegionTries = 4;
 
 // The 2 by 2 trust-region subproblem min g.s + s.H s / 2 over |s| <= radius (H symmetric), solved
 // exactly: H's eigenvectors, then the shift mu >= max(0, -smallest eigenvalue) that puts the step on the
-// boundary, by bisection (the "hard case", g orthogonal to the lowest eigenvector, filled up along it).
+// boundary (the "hard case", g orthogonal to the lowest eigenvector, filled up along it).
 Eigen::Vector2d trust_region_step(const Eigen::Matrix2d& H, const Eigen::Vector2d& g, double radius) {
   const double a = H(0, 0), b = H(0, 1), c = H(1, 1);
   const double mean = 0.5 * (a + c), half = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
@@ -87,19 +87,26 @@ Eigen::Vector2d trust_region_step(const Eigen::Matrix2d& H, const Eigen::Vector2
     return std::sqrt(x * x + y * y);
   };
   if (l1 > 0 && length(0) <= radius) return -(a1 / l1) * q1 - (a2 / l2) * q2;
-  double lo = std::max(0.0, -l1), hi = lo + 1;
+  const double lo = std::max(0.0, -l1);
   const double tiny = 1e-12 * (std::abs(l1) + std::abs(l2) + g.norm() + 1e-300);
   if (length(lo + tiny) <= radius) {  // the hard case: fill up along q1
     const Eigen::Vector2d s = -(a2 / (l2 + lo + tiny)) * q2;
     const double rest = std::sqrt(std::max(0.0, radius * radius - s.squaredNorm()));
     return s + (a1 > 0 ? -rest : rest) * q1;
   }
-  while (length(hi) > radius) hi = lo + 2 * (hi - lo);
-  for (int i = 0; i < 60; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (length(mid) > radius ? lo : hi) = mid;
+  // Newton on phi(mu) = 1 / |s(mu)| - 1 / radius, concave and increasing for mu > lo: from the left
+  // its iterates rise monotonically to the root (Moré and Sorensen), in a handful of steps here.
+  double mu = lo + tiny;
+  for (int i = 0; i < 50; ++i) {
+    const double x1 = a1 / (l1 + mu), x2 = a2 / (l2 + mu), norm = std::sqrt(x1 * x1 + x2 * x2);
+    const double phi = 1 / norm - 1 / radius;
+    if (!(std::abs(phi) > 1e-12 / radius)) break;
+    const double slope = (x1 * x1 / (l1 + mu) + x2 * x2 / (l2 + mu)) / (norm * norm * norm);
+    const double next = mu - phi / slope;
+    if (!(next > mu)) break;  // at the root to rounding (or not finite)
+    mu = next;
   }
-  return -(a1 / (l1 + hi)) * q1 - (a2 / (l2 + hi)) * q2;
+  return -(a1 / (l1 + mu)) * q1 - (a2 / (l2 + mu)) * q2;
 }
 
 // One trust-region Newton step on the sphere for Eq. 18's
