@@ -39,6 +39,7 @@
 
 #include "gauss/collision/self_intersection.h"
 #include "gauss/mesh/alignment_share.h"
+#include "gauss/solver/normal_step.h"
 #include "gauss/mesh/developability.h"
 #include "gauss/mesh/flat_vertex_share.h"
 #include "gauss/mesh/mesh_topology.h"
@@ -274,8 +275,9 @@ int main(int argc, char** argv) {
       return p;
     };
     std::printf("avoid_self_intersections: %s\n", avoid_self_intersections ? "on" : "off");
-    std::printf("normal_step: %s\n", !cubic && g.sigma() > settings::paper_step_max_sigma && !g.developable() &&
-                                               !paper_step_any_sigma ? "trust region on the sphere" : "the paper's");
+    std::printf("normal_step: %s\n", !cubic && gauss::takes_trust_region_step(g) && !paper_step_any_sigma
+                                          ? "trust region on the sphere"
+                                          : "the paper's");
     std::printf("resolution_independent: %s (reference face area %g%s)\n", resolution_independent ? "on" : "off",
                 reference_face_area, weigh_finer_faces ? ", finer faces weighed" : "");
     std::printf("intersecting_pairs: %lld -> %lld\n",

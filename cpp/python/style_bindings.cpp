@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bound_style.h"
+#include "gauss/solver/normal_step.h"
 #include "gauss/style/direction_merge.h"
 #include "gauss/style/normal_field.h"
 #include "gauss/style/presets.h"
@@ -177,6 +178,9 @@ as Style(normals) does: a cube's six give exactly the Cube preset's g.)doc")
                              "Ring axis after rotation.")
       .def_property_readonly("ring_offsets", [](const Style& s) { return s.g->ring_offsets(); })
       .def_property_readonly("sigma", [](const Style& s) { return s.g->sigma(); })
+      .def_property_readonly("trust_region_step", [](const Style& s) { return gauss::takes_trust_region_step(*s.g); },
+                             "Does a face of this style take the trust-region normal step, unless the solver's\n"
+                             "paper_step_any_sigma is on (docs/high_sigma.md)?")
       .def_property_readonly("mu", [](const Style& s) { return s.g->mu(); })
       .def_property_readonly("axis_contribution", [](const Style& s) { return s.params.axis_contribution; })
       .def_property_readonly("fit", [](const Style& s) -> py::object {

@@ -12,6 +12,7 @@ from the same table (cpp/include/gauss/settings.h), so the properties register
 with the same defaults, ranges and preset numbers either way.
 """
 
+import functools
 import json
 import os
 import sys
@@ -152,9 +153,20 @@ def preset_strengths():
     return {name: (module.Style.preset(name).sigma, lam) for name, lam in module.PRESET_LAMBDA.items()}
 
 
+@functools.lru_cache(maxsize=256)
+def preset_takes_trust_region_step(name, sigma):
+    """Does a face of preset ``name`` (a solver preset name) at ``sigma`` take the solver's trust-region
+    normal step instead of the paper's (gauss_core.Style.trust_region_step; the option
+    paper_step_any_sigma keeps the paper's)? None when the module cannot load."""
+    try:
+        module = core()
+    except NativeModuleError:
+        return None
+    return bool(module.Style.preset(name, sigma=sigma).trust_region_step)
+
+
 def paper_step_max_sigma():
-    """The sigma above which the solver takes a face's normal step on the sphere within a trust region
-    instead of the paper's step (gauss_core.PAPER_STEP_MAX_SIGMA; the option paper_step_any_sigma keeps the paper's);
+    """The sigma up to which every style takes the paper's normal step (gauss_core.PAPER_STEP_MAX_SIGMA);
     None when the module cannot load."""
     try:
         return float(core().PAPER_STEP_MAX_SIGMA)

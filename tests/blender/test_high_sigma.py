@@ -1,5 +1,6 @@
-"""High sigma: above gauss_core.PAPER_STEP_MAX_SIGMA the solver takes a face's normal step on the sphere,
-where the paper's step never let a run settle. Objects and recipes saved before (settings version 4 and
+"""High sigma: above gauss_core.PAPER_STEP_MAX_SIGMA the solver takes a face's normal step on the sphere
+for styles whose bumps stand apart (gauss_core.Style.trust_region_step), where the paper's step never let
+a run settle. Objects and recipes saved before (settings version 4 and
 earlier) with such a slot keep the paper's step (paper_step_any_sigma), so they stylize and replay as
 they did; below the limit nothing changes and nothing is written out."""
 
@@ -11,10 +12,10 @@ import helpers
 FIELD = "paper_step_any_sigma"
 
 
-def _sphere(name, sigma):
+def _sphere(name, sigma, preset='CUBE'):
     obj = helpers.uv_sphere()
     obj.name = name
-    helpers.add_slot(obj, 'CUBE', sigma=sigma)
+    helpers.add_slot(obj, preset, sigma=sigma)
     return obj
 
 
@@ -46,6 +47,7 @@ def test_objects_saved_under_version_4_keep_the_papers_step(addon, tmp_path):
     assert field.since == 5 <= versioning.VERSION
     obj = _sphere("Old", 12.0)
     _sphere("Mild", 8.0)
+    _sphere("Close", 12.0, 'ICOSAHEDRON')  # its bumps overlap: the paper's step at 12 either way
     results = {}
     for rule in (True, False):
         obj.gauss_stylization.paper_step_any_sigma = rule
@@ -60,6 +62,8 @@ def test_objects_saved_under_version_4_keep_the_papers_step(addon, tmp_path):
     # At sigma 8 the step was the paper's either way: nothing is written out, nothing shown.
     mild = bpy.data.objects["Mild"].gauss_stylization
     assert mild.paper_step_any_sigma is False and not field.shown(mild)
+    close = bpy.data.objects["Close"].gauss_stylization
+    assert close.paper_step_any_sigma is False and not field.shown(close)
     # The Solver panel shows the old step where it acts, so that the artist can untick it.
     assert field.panel is addon.settings.fields.Panel.SOLVER and field.shown(obj.gauss_stylization)
     obj.gauss_stylization.method = schema.CUBIC  # the cubic method has no normal step

@@ -161,6 +161,12 @@ inline constexpr const Option* options[] = {&keep_volume,       &acceleration,  
 // (normal_step.h: trust_region_normal). On Spot, the 6K bunny and Suzanne no face's paper step falls
 // back to the gradient at sigma 4 and 8, and from 12 on runs stop settling (docs/high_sigma.md).
 inline constexpr double paper_step_max_sigma = 8.0;
+// ... and only for a style whose bumps stand apart, PreferenceFunction::separation() above this: each
+// bump fallen below about 1% of its peak at its nearest neighbour's centre. Where they overlap more (the
+// icosahedron's 20 normals up to sigma 17, the truncated pyramid's up to 15) g's ridges between them
+// carry the paper's step, which settles there, and the trust-region step did not on Spot
+// (docs/high_sigma.md). Nor for styles with rings (cylinder, cone), where it did not either.
+inline constexpr double trust_region_min_separation = 4.5;
 
 // The face area (solver frame: longest bounding-box side 1) at which Resolution Independent changes
 // nothing; finer meshes are stylized as a mesh of this density is. Why this value:

@@ -257,26 +257,24 @@ Matrix3d GaussSolver::face_covariance(int f, const Vector3d* e) const {
 Vector3d GaussSolver::normal_update(int f, int s, const Vector3d& n, const Vector3d* es, const double* lw,
                                     const double* u) const {
   const Vector3d* preferred = any_anchored_ ? &preferred_normal_[f] : nullptr;
-  // Sheet Metal keeps the paper's step at its sigma of 16: its one bump moves with the face's
-  // neighbourhood, and solving towards it left the corpus's meshes less developable.
-  auto sharp = [&](const PreferenceFunction& style) {
-    return style.sigma() > settings::paper_step_max_sigma && !style.developable();
-  };
   if (s >= 0) {
-    if (!paper_step_any_sigma_ && sharp(styles_[s])) return trust_region_normal(styles_[s], n, es, lw, u, preferred);
+    if (!paper_step_any_sigma_ && takes_trust_region_step(styles_[s]))
+      return trust_region_normal(styles_[s], n, es, lw, u, preferred);
     return newton_normal(styles_[s], n, es, lw, u, preferred);
   }
   const int b = -2 - s;
   const StyleShare* shares = &blend_shares_[blend_start_[b]];
   const int count = blend_start_[b + 1] - blend_start_[b];
+  // A blend takes the trust-region step where one of its styles would and every one of them is of
+  // fixed directions without rings.
   bool solve = false;
   for (int k = 0; k < count && !paper_step_any_sigma_; ++k) {
     const PreferenceFunction& style = styles_[shares[k].style];
-    if (style.developable()) {
+    if (style.kind() != StyleKind::directions || style.has_rings()) {
       solve = false;
       break;
     }
-    solve = solve || sharp(style);
+    solve = solve || takes_trust_region_step(style);
   }
   if (solve) return trust_region_normal(styles_.data(), shares, count, n, es, lw, u, preferred);
   return newton_normal(styles_.data(), shares, count, n, es, lw, u, preferred);

@@ -1,8 +1,10 @@
 #include "gauss/solver/normal_step.h"
 
+#include <Eigen/Geometry>  // cross
 #include <algorithm>
 #include <cmath>
-#include <Eigen/Geometry>  // cross
+
+#include "gauss/settings.h"
 
 namespace gauss {
 
@@ -180,6 +182,11 @@ Vector3d newton_normal(const PreferenceFunction* styles, const StyleShare* share
     hess_sum += shares[k].share * hess_g;
   }
   return newton_update(grad_sum, hess_sum, n, es, lw, u);
+}
+
+bool takes_trust_region_step(const PreferenceFunction& style) {
+  return style.sigma() > settings::paper_step_max_sigma && style.kind() == StyleKind::directions &&
+         !style.has_rings() && style.separation() > settings::trust_region_min_separation;
 }
 
 Vector3d trust_region_normal(const PreferenceFunction& style, const Vector3d& n, const Vector3d* es, const double* lw,

@@ -147,6 +147,10 @@ PreferenceFunction::PreferenceFunction(const StyleParams& p)
       second_of_pair_.push_back(code < 0);
     }
     exp_minus_2sigma_ = std::exp(-2.0 * sigma_);
+    double closest = -1;  // the largest cosine between two preferred normals
+    for (int k = 0; k < K; ++k)
+      for (int j = k + 1; j < K; ++j) closest = std::max(closest, normals_[k].dot(normals_[j]));
+    separation_ = K > 1 ? sigma_ * (1.0 - closest) : INFINITY;
   }
   const int R = static_cast<int>(offsets_.size());
   if (R > 0) {

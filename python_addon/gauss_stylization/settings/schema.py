@@ -128,17 +128,25 @@ def _old_rule_shown(name):
 
 def _paper_step_acts(settings):
     """Does paper_step_any_sigma change a run of these settings (an object's, or a dump of them, whose
-    slots are dicts)? With the Gauss method, where a slot with fixed directions is sharper than the
-    solver's limit (native.paper_step_max_sigma; without the module: wherever such a slot exists)."""
+    slots are dicts)? With the Gauss method, where a preset slot takes the solver's trust-region step
+    (native.preset_takes_trust_region_step), and where a Custom slot may (sharper than the solver's
+    limit; whether its normals stand apart is the solver's to say). Without the module: wherever a slot
+    may."""
     if is_cubic(settings):
         return False
     limit = native.paper_step_max_sigma()
-    own_sigma = native.preset_strengths()  # the presets without fixed directions (Sheet Metal)
 
     def value(slot, name):
         return slot[name] if isinstance(slot, dict) else getattr(slot, name)
-    return any((limit is None or value(slot, "sigma") > limit) and value(slot, "preset").lower() not in own_sigma
-               for slot in settings.styles)
+
+    def acts(slot):
+        sigma, preset = value(slot, "sigma"), value(slot, "preset")
+        if limit is None or preset == CUSTOM:
+            return limit is None or sigma > limit
+        if preset == GAUSS_MAP:
+            return False
+        return native.preset_takes_trust_region_step(preset.lower(), sigma)
+    return any(acts(slot) for slot in settings.styles)
 
 
 def _is_custom(slot):

@@ -50,6 +50,13 @@ Eigen::Vector3d newton_normal(const PreferenceFunction* styles, const StyleShare
 // two cancel, its steps turn huge or uphill, faces jump between bumps and switch between Newton and the
 // fallback at every step, and a run never settles. This one settles at any sigma (docs/high_sigma.md).
 // Arguments as newton_normal's.
+// Does a face of this style take trust_region_normal (unless the solver's paper_step_any_sigma says
+// otherwise)? Above settings::paper_step_max_sigma, for styles of fixed directions without rings whose
+// bumps stand apart (PreferenceFunction::separation() above settings::trust_region_min_separation).
+// Sheet Metal's one bump moves with the face's neighbourhood, and the step left the corpus less
+// developable; rings and close bumps: docs/high_sigma.md.
+bool takes_trust_region_step(const PreferenceFunction& style);
+
 Eigen::Vector3d trust_region_normal(const PreferenceFunction& style, const Eigen::Vector3d& n, const Eigen::Vector3d* es,
                                     const double* lw, const double* u, const Eigen::Vector3d* preferred = nullptr);
 Eigen::Vector3d trust_region_normal(const PreferenceFunction* styles, const StyleShare* shares, int count,

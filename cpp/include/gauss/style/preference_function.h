@@ -87,6 +87,10 @@ class PreferenceFunction {
   const Eigen::Matrix3d& rotation() const { return rotation_; }              // the orientation given
   const std::vector<double>& ring_offsets() const { return offsets_; }
   bool has_rings() const { return !offsets_.empty(); }
+  // How far apart its bumps are: sigma (1 - cos of the smallest angle between two preferred normals),
+  // so that each bump has fallen to e^-separation of its peak at its nearest neighbour's centre;
+  // infinity for a single normal, 0 for many normals (a NormalField) and for the other kinds.
+  double separation() const { return separation_; }
   // The many-normals representation, or nullptr when the normals are summed exactly.
   const NormalField* field() const { return field_.get(); }
 
@@ -103,6 +107,7 @@ class PreferenceFunction {
   std::vector<double> offsets_;
   std::vector<double> ring_weights_;    // w'_r
   double sigma_, mu_;
+  double separation_ = 0;
   Eigen::Matrix3d rotation_;
   StyleKind kind_;
 };
