@@ -147,10 +147,10 @@ inline constexpr Option square_flat_regions{
 inline constexpr Option paper_step_any_sigma{
     "paper_step_any_sigma", false,
     "Take the paper's one Newton step for a face's normal (Eqs. 21-22) at every sigma, as before 2026-12-07 "
-    "(files saved then keep their result with it). False: above sigma 8 the step is taken on the sphere "
-    "within one bump's width instead, since there the paper's step makes faces jump between preferred normals "
-    "at every step and a run never settles (docs/high_sigma.md). At sigma 8 and below, and for Sheet Metal, "
-    "it changes nothing."};
+    "(files saved then keep their result with it). False: above sigma 8, for styles whose preferred normals "
+    "stand apart (Style.trust_region_step), the step is taken on the sphere within one bump's width instead, "
+    "since there the paper's step makes faces jump between preferred normals at every step and a run never "
+    "settles (docs/high_sigma.md). At sigma 8 and below, for rings and Sheet Metal, it changes nothing."};
 
 inline constexpr const Option* options[] = {&keep_volume,       &acceleration,      &avoid_self_intersections,
                                             &resolution_independent, &weigh_finer_faces, &square_flat_regions,
