@@ -152,13 +152,13 @@ inline constexpr Option paper_step_any_sigma{
     "since there the paper's step makes faces jump between preferred normals at every step and a run never "
     "settles (docs/high_sigma.md). At sigma 8 and below, for rings and Sheet Metal, it changes nothing."};
 
-inline constexpr const Option* options[] = {&keep_volume,       &acceleration,      &avoid_self_intersections,
+inline constexpr const Option* options[] = {&keep_volume, &acceleration, &avoid_self_intersections,
                                             &resolution_independent, &weigh_finer_faces, &square_flat_regions,
                                             &paper_step_any_sigma};
 
 // Up to this sigma a face's normal takes the paper's one Newton step (Eqs. 21-22), bit for bit; above it
-// (styles with fixed directions, without paper_step_any_sigma) a trust-region Newton step on the sphere
-// (normal_step.h: trust_region_normal). On Spot, the 6K bunny and Suzanne no face's paper step falls
+// (without paper_step_any_sigma, for the styles normal_step.h's takes_trust_region_step names) a
+// trust-region Newton step on the sphere (normal_step.h: trust_region_normal). On Spot, the 6K bunny and Suzanne no face's paper step falls
 // back to the gradient at sigma 4 and 8, and from 12 on runs stop settling (docs/high_sigma.md).
 inline constexpr double paper_step_max_sigma = 8.0;
 // ... and only for a style whose bumps stand apart, PreferenceFunction::separation() above this: each

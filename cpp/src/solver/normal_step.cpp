@@ -78,7 +78,8 @@ Eigen::Vector2d trust_region_step(const Eigen::Matrix2d& H, const Eigen::Vector2
   const double a = H(0, 0), b = H(0, 1), c = H(1, 1);
   const double mean = 0.5 * (a + c), half = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
   const double l1 = mean - half, l2 = mean + half;
-  Eigen::Vector2d q1 = std::abs(b) > 1e-300 ? Eigen::Vector2d(b, l1 - a) : (a <= c ? Eigen::Vector2d(1, 0) : Eigen::Vector2d(0, 1));
+  Eigen::Vector2d q1 = std::abs(b) > 1e-300 ? Eigen::Vector2d(b, l1 - a)
+                                            : (a <= c ? Eigen::Vector2d(1, 0) : Eigen::Vector2d(0, 1));
   q1.normalize();
   const Eigen::Vector2d q2(-q1.y(), q1.x());
   const double a1 = q1.dot(g), a2 = q2.dot(g);
@@ -139,7 +140,8 @@ Vector3d trust_region_update(const Evaluate& evaluate, const Vector3d& n, const 
   Vector3d G;
   Matrix3d Hs;
   const double f = objective(n, &G, &Hs);
-  Vector3d t1 = std::abs(n.x()) < 0.6 ? Vector3d::UnitX() : (std::abs(n.y()) < 0.6 ? Vector3d::UnitY() : Vector3d::UnitZ());
+  Vector3d t1 = std::abs(n.x()) < 0.6 ? Vector3d::UnitX()
+                                      : (std::abs(n.y()) < 0.6 ? Vector3d::UnitY() : Vector3d::UnitZ());
   t1 = (t1 - t1.dot(n) * n).normalized();
   const Vector3d t2 = n.cross(t1);
   const Eigen::Vector2d gr(t1.dot(G), t2.dot(G));
@@ -190,7 +192,7 @@ bool takes_trust_region_step(const PreferenceFunction& style) {
 }
 
 Vector3d trust_region_normal(const PreferenceFunction& style, const Vector3d& n, const Vector3d* es, const double* lw,
-                       const double* u, const Vector3d* preferred) {
+                             const double* u, const Vector3d* preferred) {
   auto evaluate = [&](const Vector3d& x, double& g, Vector3d& grad, Matrix3d& hess) {
     evaluate_style(style, x, preferred, g, grad, hess);
   };
@@ -198,7 +200,7 @@ Vector3d trust_region_normal(const PreferenceFunction& style, const Vector3d& n,
 }
 
 Vector3d trust_region_normal(const PreferenceFunction* styles, const StyleShare* shares, int count, const Vector3d& n,
-                       const Vector3d* es, const double* lw, const double* u, const Vector3d* preferred) {
+                             const Vector3d* es, const double* lw, const double* u, const Vector3d* preferred) {
   double sigma = 0;
   for (int k = 0; k < count; ++k) sigma = std::max(sigma, styles[shares[k].style].sigma());
   auto evaluate = [&](const Vector3d& x, double& g, Vector3d& grad, Matrix3d& hess) {

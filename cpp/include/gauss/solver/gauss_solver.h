@@ -132,8 +132,8 @@ class GaussSolver {
   void set_weigh_finer_faces(bool on);
   bool weigh_finer_faces() const { return weigh_finer_faces_; }
   // settings::paper_step_any_sigma: the paper's normal step at every sigma, as before 2026-12-07; off,
-  // faces whose style has fixed directions and a sigma above settings::paper_step_max_sigma take a
-  // trust-region step on the sphere instead (normal_step.h: trust_region_normal).
+  // the faces of the styles normal_step.h's takes_trust_region_step names (sharper than
+  // settings::paper_step_max_sigma, bumps apart) take a trust-region step on the sphere instead.
   void set_paper_step_any_sigma(bool on);
   bool paper_step_any_sigma() const { return paper_step_any_sigma_; }
   // The face area (solver frame) at which Resolution Independent changes nothing; by default
@@ -294,7 +294,7 @@ class GaussSolver {
   // The highest style index any face uses (-1 if none).
   int highest_face_style() const;
   // The Gauss method's normal update for face f of style code s (face_style_): newton_normal, or
-  // trust_region_normal where the style is sharper than settings::paper_step_max_sigma.
+  // trust_region_normal where takes_trust_region_step says so (normal_step.h).
   Eigen::Vector3d normal_update(int f, int s, const Eigen::Vector3d& n, const Eigen::Vector3d* es, const double* lw,
                                 const double* u) const;
   // While a developable or gauss_map style is set: preferred_normal_ from the current vertices (with a

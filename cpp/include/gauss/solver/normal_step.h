@@ -26,7 +26,7 @@ bool solve_symmetric3(const Eigen::Matrix3d& H, const Eigen::Vector3d& b, Eigen:
 //              style's g is centred on (PreferenceFunction::evaluate); other styles ignore it
 // Returns the new unit normal (n itself if the update is not finite).
 Eigen::Vector3d newton_normal(const PreferenceFunction& style, const Eigen::Vector3d& n, const Eigen::Vector3d* es,
-                                    const double* lw, const double* u, const Eigen::Vector3d* preferred = nullptr);
+                              const double* lw, const double* u, const Eigen::Vector3d* preferred = nullptr);
 
 // One style of a face that blends several: the face's preference is sum_k share_k g_k(n), where
 // share_k = w_k mu_k / sum_j w_j mu_j (w: the face's weight for the style). The paper's rho = mu lambda,
@@ -42,14 +42,6 @@ Eigen::Vector3d newton_normal(const PreferenceFunction* styles, const StyleShare
                               const Eigen::Vector3d& n, const Eigen::Vector3d* es, const double* lw, const double* u,
                               const Eigen::Vector3d* preferred = nullptr);
 
-// The update of newton_normal for the same L_n(n), taken on the sphere: one Newton step with the
-// Riemannian gradient and Hessian (the 3D Hessian projected, less the radial part of the gradient), kept
-// within one bump's width of g (1 / sqrt(sigma); the blend's: its sharpest style's) and only where it
-// lowers L_n (retried at smaller radii, else n stays). The paper's step solves with the 3D Hessian, whose
-// tangent part is the edge coupling less the other bumps' pull: above settings::paper_step_max_sigma the
-// two cancel, its steps turn huge or uphill, faces jump between bumps and switch between Newton and the
-// fallback at every step, and a run never settles. This one settles at any sigma (docs/high_sigma.md).
-// Arguments as newton_normal's.
 // Does a face of this style take trust_region_normal (unless the solver's paper_step_any_sigma says
 // otherwise)? Above settings::paper_step_max_sigma, for styles of fixed directions without rings whose
 // bumps stand apart (PreferenceFunction::separation() above settings::trust_region_min_separation).
@@ -57,10 +49,18 @@ Eigen::Vector3d newton_normal(const PreferenceFunction* styles, const StyleShare
 // developable; rings and close bumps: docs/high_sigma.md.
 bool takes_trust_region_step(const PreferenceFunction& style);
 
+// The update of newton_normal for the same L_n(n), taken on the sphere: one Newton step with the
+// Riemannian gradient and Hessian (the 3D Hessian projected, less the radial part of the gradient), kept
+// within one bump's width of g (1 / sqrt(sigma); the blend's: its sharpest style's) and only where it
+// lowers L_n (retried at smaller radii, else n stays). The paper's step solves with the 3D Hessian, whose
+// tangent part is the edge coupling less the other bumps' pull: above settings::paper_step_max_sigma the
+// two cancel for the styles takes_trust_region_step names, its steps turn huge or uphill, faces jump
+// between bumps and switch between Newton and the fallback at every step, and a run never settles; this
+// one settles there (docs/high_sigma.md). Arguments as newton_normal's.
 Eigen::Vector3d trust_region_normal(const PreferenceFunction& style, const Eigen::Vector3d& n, const Eigen::Vector3d* es,
                                     const double* lw, const double* u, const Eigen::Vector3d* preferred = nullptr);
 Eigen::Vector3d trust_region_normal(const PreferenceFunction* styles, const StyleShare* shares, int count,
-                              const Eigen::Vector3d& n, const Eigen::Vector3d* es, const double* lw, const double* u,
-                              const Eigen::Vector3d* preferred = nullptr);
+                                    const Eigen::Vector3d& n, const Eigen::Vector3d* es, const double* lw,
+                                    const double* u, const Eigen::Vector3d* preferred = nullptr);
 
 }  // namespace gauss
