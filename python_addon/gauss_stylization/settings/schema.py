@@ -280,7 +280,7 @@ OBJECT = (
     Bool("paper_step_any_sigma", "Paper's Step (Old)", "The normal step as it was before "
          "2026-12-07, which this object was saved with: the paper's one Newton step at every Sigma. Above Sigma "
          "8 it makes faces jump between preferred normals and a run never settles. Untick for today's step, "
-         "which settles at any Sigma (docs/high_sigma.md)", since=5, before=True, before_where=_paper_step_acts,
+         "which settles there for styles whose directions stand apart (docs/high_sigma.md)", since=5, before=True, before_where=_paper_step_acts,
          live=Live.SETTER, panel=Panel.SOLVER,
          shown=lambda s: s.paper_step_any_sigma and _paper_step_acts(s)),
     Bool("square_flat_regions", "Square Flat Regions", "Give large flat regions (a cap, a lid, a table top) "
