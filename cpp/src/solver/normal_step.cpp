@@ -63,6 +63,23 @@ void evaluate_style(const PreferenceFunction& style, const Vector3d& n, const Ve
   else style.evaluate(n, g, grad_g, hess_g);
 }
 
+// The blend's g, gradient and Hessian: each style's, scaled by its share.
+void evaluate_blend(const PreferenceFunction* styles, const StyleShare* shares, int count, const Vector3d& n,
+                    const Vector3d* preferred, double& g, Vector3d& grad, Matrix3d& hess) {
+  g = 0;
+  grad.setZero();
+  hess.setZero();
+  for (int k = 0; k < count; ++k) {
+    double gk;
+    Vector3d grad_k;
+    Matrix3d hess_k;
+    evaluate_style(styles[shares[k].style], n, preferred, gk, grad_k, hess_k);
+    g += shares[k].share * gk;
+    grad += shares[k].share * grad_k;
+    hess += shares[k].share * hess_k;
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -173,16 +190,10 @@ Vector3d newton_normal(const PreferenceFunction& style, const Vector3d& n, const
 
 Vector3d newton_normal(const PreferenceFunction* styles, const StyleShare* shares, int count, const Vector3d& n,
                        const Vector3d* es, const double* lw, const double* u, const Vector3d* preferred) {
-  Vector3d grad_sum = Vector3d::Zero();
-  Matrix3d hess_sum = Matrix3d::Zero();
-  for (int k = 0; k < count; ++k) {
-    double g;
-    Vector3d grad_g;
-    Matrix3d hess_g;
-    evaluate_style(styles[shares[k].style], n, preferred, g, grad_g, hess_g);
-    grad_sum += shares[k].share * grad_g;
-    hess_sum += shares[k].share * hess_g;
-  }
+  double g;
+  Vector3d grad_sum;
+  Matrix3d hess_sum;
+  evaluate_blend(styles, shares, count, n, preferred, g, grad_sum, hess_sum);
   return newton_update(grad_sum, hess_sum, n, es, lw, u);
 }
 
@@ -204,18 +215,7 @@ Vector3d trust_region_normal(const PreferenceFunction* styles, const StyleShare*
   double sigma = 0;
   for (int k = 0; k < count; ++k) sigma = std::max(sigma, styles[shares[k].style].sigma());
   auto evaluate = [&](const Vector3d& x, double& g, Vector3d& grad, Matrix3d& hess) {
-    g = 0;
-    grad.setZero();
-    hess.setZero();
-    for (int k = 0; k < count; ++k) {
-      double gk;
-      Vector3d grad_k;
-      Matrix3d hess_k;
-      evaluate_style(styles[shares[k].style], x, preferred, gk, grad_k, hess_k);
-      g += shares[k].share * gk;
-      grad += shares[k].share * grad_k;
-      hess += shares[k].share * hess_k;
-    }
+    evaluate_blend(styles, shares, count, x, preferred, g, grad, hess);
   };
   return trust_region_update(evaluate, n, es, lw, u, sigma);
 }
