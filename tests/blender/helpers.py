@@ -180,6 +180,16 @@ def replays_with_the_old_rule(addon, make_object, field, steps):
     assert getattr(obj.gauss_stylization, field) is False  # the artist's setting is left as it was
 
 
+def stepped_result(addon, obj, steps=8):
+    """The coordinates a session of ``obj`` reaches in ``steps`` steps; the session is cancelled, so the
+    mesh is as it was."""
+    run = addon.run.session.Session(obj)
+    run.step(steps)
+    out = coords(obj)
+    run.cancel()
+    return out
+
+
 def stylize(iterations, **settings):
     """Run the operator as a script would (execute, no invoke) after setting object ``settings``."""
     settings_io.apply_dict(bpy.context.active_object.gauss_stylization, settings)

@@ -19,14 +19,6 @@ def _sphere(name, sigma, preset='CUBE'):
     return obj
 
 
-def _result(addon, obj, steps=8):
-    run = addon.run.session.Session(obj)
-    run.step(steps)
-    out = helpers.coords(obj)
-    run.cancel()
-    return out
-
-
 def test_a_sharp_slot_settles_where_the_papers_step_did_not(addon):
     obj = _sphere("Sharp", 16.0)
     assert obj.gauss_stylization.paper_step_any_sigma is False
@@ -51,14 +43,14 @@ def test_objects_saved_under_version_4_keep_the_papers_step(addon, tmp_path):
     results = {}
     for rule in (True, False):
         obj.gauss_stylization.paper_step_any_sigma = rule
-        results[rule] = _result(addon, obj)
+        results[rule] = helpers.stepped_result(addon, obj)
     assert np.abs(results[True] - results[False]).max() > 1e-4
     helpers.save_as_version(addon, str(tmp_path / "v4.blend"), 4, FIELD)
     helpers.clear_scene()
     bpy.ops.wm.open_mainfile(filepath=str(tmp_path / "v4.blend"), load_ui=False)
     obj = bpy.data.objects["Old"]
     assert obj.gauss_stylization.paper_step_any_sigma is True
-    np.testing.assert_array_equal(_result(addon, obj), results[True])
+    np.testing.assert_array_equal(helpers.stepped_result(addon, obj), results[True])
     # At sigma 8 the step was the paper's either way: nothing is written out, nothing shown.
     mild = bpy.data.objects["Mild"].gauss_stylization
     assert mild.paper_step_any_sigma is False and not field.shown(mild)

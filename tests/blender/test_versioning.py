@@ -11,14 +11,6 @@ import pytest
 import helpers
 
 
-def _result(addon, obj, steps=8):
-    run = addon.run.session.Session(obj)
-    run.step(steps)
-    out = helpers.coords(obj)
-    run.cancel()
-    return out
-
-
 def _half_painted_sphere(name="Sphere"):
     """A UV sphere with one Cube slot whose Region weighs 0.5 everywhere; Other Faces never set."""
     obj = helpers.uv_sphere()
@@ -33,7 +25,7 @@ def _unpainted_result(addon, obj):
     slot = obj.gauss_stylization.styles[0]
     slot.vertex_group = ""
     try:
-        return _result(addon, obj)
+        return helpers.stepped_result(addon, obj)
     finally:
         slot.vertex_group = "Paint"
 
@@ -53,7 +45,7 @@ def _save_as_an_earlier_version_did(addon, path):
 def test_a_region_on_the_only_slot_paints_it(addon):
     obj = _half_painted_sphere()
     assert obj.gauss_stylization.uncovered == 'UNSTYLED'
-    assert not np.array_equal(_result(addon, obj), _unpainted_result(addon, obj))
+    assert not np.array_equal(helpers.stepped_result(addon, obj), _unpainted_result(addon, obj))
 
 
 def _as_version_0_ran(obj):
@@ -65,13 +57,13 @@ def test_a_file_saved_with_the_old_default_keeps_its_result(addon, tmp_path):
     obj = _half_painted_sphere()
     _as_version_0_ran(obj)
     obj.gauss_stylization.uncovered = 'FIRST_SLOT'  # what the old default gave it
-    old_result = _result(addon, obj)
+    old_result = helpers.stepped_result(addon, obj)
     assert np.array_equal(old_result, _unpainted_result(addon, obj))  # the old rule: the paint did nothing
     obj.gauss_stylization.property_unset("uncovered")  # as the old version saved it: never set
     explicit = _half_painted_sphere("Chosen")
     _as_version_0_ran(explicit)
     explicit.gauss_stylization.uncovered = 'UNSTYLED'  # set by hand in the old version: kept
-    chosen_result = _result(addon, explicit)
+    chosen_result = helpers.stepped_result(addon, explicit)
     for each in (obj, explicit):
         each.gauss_stylization.property_unset("resolution_independent")  # a setting version 0 did not know
     path = str(tmp_path / "old.blend")
@@ -83,14 +75,14 @@ def test_a_file_saved_with_the_old_default_keeps_its_result(addon, tmp_path):
     settings = obj.gauss_stylization
     assert settings.uncovered == 'FIRST_SLOT' and settings.is_property_set("uncovered")
     assert settings.settings_version == addon.settings.versioning.VERSION
-    assert np.array_equal(_result(addon, obj), old_result)
+    assert np.array_equal(helpers.stepped_result(addon, obj), old_result)
     assert explicit.gauss_stylization.uncovered == 'UNSTYLED'
-    assert np.array_equal(_result(addon, explicit), chosen_result)
+    assert np.array_equal(helpers.stepped_result(addon, explicit), chosen_result)
 
 
 def test_a_file_saved_now_keeps_the_new_default(addon, tmp_path):
     obj = _half_painted_sphere()
-    painted = _result(addon, obj)
+    painted = helpers.stepped_result(addon, obj)
     path = str(tmp_path / "new.blend")
     bpy.ops.wm.save_as_mainfile(filepath=path)
     helpers.clear_scene()
@@ -99,7 +91,7 @@ def test_a_file_saved_now_keeps_the_new_default(addon, tmp_path):
     obj = bpy.data.objects["Sphere"]
     assert obj.gauss_stylization.uncovered == 'UNSTYLED'
     assert not obj.gauss_stylization.is_property_set("uncovered")  # still the default, not written out
-    assert np.array_equal(_result(addon, obj), painted)
+    assert np.array_equal(helpers.stepped_result(addon, obj), painted)
 
 
 def test_first_style_keeps_the_last_free_slot_and_unstyled_takes_the_first(addon):
@@ -151,13 +143,13 @@ def test_an_object_stamped_by_an_earlier_version_is_brought_up_to_date_before_th
 def test_a_run_brings_a_stamped_object_up_to_date_first(addon):
     """Stylizing such an object gives the result it had in its own file (the old curve), not today's."""
     today = _half_painted_sphere("Today")
-    todays_result = _result(addon, today)
+    todays_result = helpers.stepped_result(addon, today)
     today.gauss_stylization.old_paint_curve = True
-    old_curve_result = _result(addon, today)
+    old_curve_result = helpers.stepped_result(addon, today)
     assert np.abs(todays_result - old_curve_result).max() > 1e-4
     obj = _stamped_by_version_3(addon, "Appended")
     # Two objects built alike differ by rounding (1e-15), the two curves by far more.
-    np.testing.assert_allclose(_result(addon, obj), old_curve_result, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(helpers.stepped_result(addon, obj), old_curve_result, rtol=0, atol=1e-9)
     assert obj.gauss_stylization.old_paint_curve is True
 
 

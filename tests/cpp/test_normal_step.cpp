@@ -97,6 +97,23 @@ LocalProblem face_problem(const PreferenceFunction& g, const Vector3d& normal, d
   return lp;
 }
 
+// A face's local problem far outside a mesh's range: edges from 1e-6 to 1e2 long, couplings up to 1e4,
+// random duals; `trial` picks the scales.
+struct WildFace {
+  Vector3d es[3];
+  double lw[3], u[3];
+};
+WildFace wild_face(std::mt19937& rng, int trial) {
+  std::normal_distribution<double> normal;
+  WildFace face;
+  for (int k = 0; k < 3; ++k) {
+    face.es[k] = Vector3d(normal(rng), normal(rng), normal(rng)) * std::pow(10.0, trial % 9 - 6);
+    face.lw[k] = std::abs(normal(rng)) * std::pow(10.0, trial % 5);
+    face.u[k] = normal(rng);
+  }
+  return face;
+}
+
 PreferenceFunction style(const std::string& preset, double sigma) {
   gauss::StyleParams p = gauss::preset_style(preset);
   p.sigma = sigma;
@@ -229,14 +246,8 @@ TEST(NewtonNormal, AlwaysReturnsAUnitVector) {
   const PreferenceFunction g(gauss::preset_style("dodecahedron"));
   for (int trial = 0; trial < 1000; ++trial) {
     const Vector3d n = Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-    Vector3d es[3];
-    double lw[3], u[3];
-    for (int k = 0; k < 3; ++k) {
-      es[k] = Vector3d(normal(rng), normal(rng), normal(rng)) * std::pow(10.0, trial % 9 - 6);
-      lw[k] = std::abs(normal(rng)) * std::pow(10.0, trial % 5);
-      u[k] = normal(rng);
-    }
-    const Vector3d m = newton_normal(g, n, es, lw, u);
+    const WildFace face = wild_face(rng, trial);
+    const Vector3d m = newton_normal(g, n, face.es, face.lw, face.u);
     ASSERT_TRUE(m.allFinite());
     ASSERT_NEAR(m.norm(), 1.0, 1e-14);
   }
@@ -298,14 +309,8 @@ TEST(TrustRegionNormal, AlwaysReturnsAUnitVector) {
     const PreferenceFunction g = style("dodecahedron", sigma);
     for (int trial = 0; trial < 500; ++trial) {
       const Vector3d n = Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-      Vector3d es[3];
-      double lw[3], u[3];
-      for (int k = 0; k < 3; ++k) {
-        es[k] = Vector3d(normal(rng), normal(rng), normal(rng)) * std::pow(10.0, trial % 9 - 6);
-        lw[k] = std::abs(normal(rng)) * std::pow(10.0, trial % 5);
-        u[k] = normal(rng);
-      }
-      const Vector3d m = trust_region_normal(g, n, es, lw, u);
+      const WildFace face = wild_face(rng, trial);
+      const Vector3d m = trust_region_normal(g, n, face.es, face.lw, face.u);
       ASSERT_TRUE(m.allFinite());
       ASSERT_NEAR(m.norm(), 1.0, 1e-14);
     }
