@@ -41,6 +41,7 @@ void FixedPointIteration::prepare_carried(size_t size) {
 
 void FixedPointIteration::restart() {
   has_momentum_ = false;
+  momentum_steps_ = 0;
   std::fill(hold_.begin(), hold_.end(), 0);
 }
 
@@ -71,6 +72,10 @@ void FixedPointIteration::move_to_momentum_point(std::vector<Vector3d>& X, std::
 }
 
 void FixedPointIteration::update_momentum(const std::vector<Vector3d>& X, const std::vector<Vector3d>& carried) {
+  if (plain_steps_left_ > 0) {  // backing off: the next step is plain too
+    --plain_steps_left_;
+    return;
+  }
   const int n = static_cast<int>(X.size());
   const bool had_momentum = has_momentum_;
   const int k = n > 0 ? static_cast<int>(carried.size()) / n : 0;
@@ -87,7 +92,12 @@ void FixedPointIteration::update_momentum(const std::vector<Vector3d>& X, const 
   if (!had_momentum) return;
   double total = 0;  // serial: the same sum for any thread count
   for (double a : agreement_) total += a;
-  if (total < 0) restart();
+  ++momentum_steps_;
+  if (total < 0) {
+    short_restarts_ = momentum_steps_ <= kShortMomentum ? short_restarts_ + 1 : 0;
+    restart();
+    if (short_restarts_ >= 2) plain_steps_left_ = std::min(1 << std::min(short_restarts_ - 1, 30), kMaxPlainSteps);
+  }
 }
 
 }  // namespace gauss

@@ -24,6 +24,13 @@
 // per vertex): a vertex whose step from y_k points against its momentum (a negative dot product) gets
 // none for the next `hold` steps, so sliver regions that flap from step to step are not kicked
 // further; when the dot product summed over all vertices is negative, all restart.
+// Back-off: a restart after at most kShortMomentum extrapolated steps means the momentum bought
+// nothing there; from the second such restart in a row the run goes on plainly for 2, 4, 8, ... (at
+// most kMaxPlainSteps) steps before momentum comes back. Where the plain iteration does not creep
+// but cycles or wanders (a mesh that is already the style's shape, under the cubic method; Tetrahedron
+// at lambda 10 on meshes with slivers), momentum restarted at every other step turned the run into a
+// cycle of its own, a plain and an extrapolated step, that moved the mesh by up to 1% of its size per
+// step where the plain iteration settles or moves a tenth of that (docs/performance.md#converging-in-fewer-steps).
 // A step that carries a state of its own from step to step (the cubic method's per-vertex ADMM
 // state) is a map on the vertices and that state together: both are extrapolated, each vertex's
 // state with the vertex, because momentum on the vertices alone stopped the cubic method short of the
@@ -49,6 +56,10 @@ namespace gauss {
 
 // Relative displacement below which a mesh counts as not moved (see above).
 inline constexpr double kStillDisplacement = 1e-8;
+// The back-off (see above): a restart after at most this many extrapolated steps is a short one...
+inline constexpr int kShortMomentum = 3;
+// ...and the most plain steps in a row it imposes.
+inline constexpr int kMaxPlainSteps = 32;
 
 // reldV of one step from `from` to `to`.
 //   from, to, rest  #V by 3, one frame;  size  the mesh's extent in that frame (> 0)
@@ -88,6 +99,7 @@ class FixedPointIteration {
   void invalidate() {
     last_reldv_ = INFINITY;
     restart();
+    forget_backoff();
   }
 
   // Sizes the buffers for a carried state of up to `size` rows (allocates; not during a step).
@@ -99,6 +111,7 @@ class FixedPointIteration {
     accelerate_ = on;
     momentum_ = momentum;
     restart();
+    forget_backoff();
   }
   bool acceleration() const { return accelerate_; }
   const settings::Momentum& momentum() const { return momentum_; }
@@ -108,6 +121,10 @@ class FixedPointIteration {
 
  private:
   void restart();
+  void forget_backoff() {
+    short_restarts_ = 0;
+    plain_steps_left_ = 0;
+  }
   void move_to_momentum_point(std::vector<Eigen::Vector3d>& X, std::vector<Eigen::Vector3d>& carried);
   void update_momentum(const std::vector<Eigen::Vector3d>& X, const std::vector<Eigen::Vector3d>& carried);
 
@@ -116,6 +133,9 @@ class FixedPointIteration {
   bool has_momentum_ = false;
   bool extrapolated_ = false;
   double last_reldv_ = INFINITY;
+  int momentum_steps_ = 0;    // extrapolated steps since momentum last (re)started
+  int short_restarts_ = 0;    // restarts in a row that came after at most kShortMomentum of them
+  int plain_steps_left_ = 0;  // plain steps the back-off still imposes
   // #V each, allocated once.
   std::vector<Eigen::Vector3d> point_;     // y: where the last step applied T
   std::vector<Eigen::Vector3d> current_;   // x_k: the iterate before the last step
