@@ -25,8 +25,8 @@
 // none for the next `hold` steps, so sliver regions that flap from step to step are not kicked
 // further; when the dot product summed over all vertices is negative, all restart.
 // Back-off: a restart after at most kShortMomentum extrapolated steps means the momentum bought
-// nothing there; from the second such restart in a row the run goes on plainly for 2, 4, 8, ... (at
-// most kMaxPlainSteps) steps before momentum comes back. Where the plain iteration does not creep
+// nothing there; from the second such restart in a row the run takes 2, 4, 8, ... (at most
+// kMaxPlainSteps) plain steps more than a restart's one before momentum comes back. Where the plain iteration does not creep
 // but cycles or wanders (a mesh that is already the style's shape, under the cubic method; Tetrahedron
 // at lambda 10 on meshes with slivers), momentum restarted at every other step turned the run into a
 // cycle of its own, a plain and an extrapolated step, that moved the mesh by up to 1% of its size per
