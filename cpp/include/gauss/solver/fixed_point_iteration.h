@@ -26,11 +26,12 @@
 // further; when the dot product summed over all vertices is negative, all restart.
 // Back-off: a restart after at most kShortMomentum extrapolated steps means the momentum bought
 // nothing there; from the second such restart in a row the run takes 2, 4, 8, ... (at most
-// kMaxPlainSteps) plain steps more than a restart's one before momentum comes back. Where the plain iteration does not creep
-// but cycles or wanders (a mesh that is already the style's shape, under the cubic method; Tetrahedron
-// at lambda 10 on meshes with slivers), momentum restarted at every other step turned the run into a
-// cycle of its own, a plain and an extrapolated step, that moved the mesh by up to 1% of its size per
-// step where the plain iteration settles or moves a tenth of that (docs/performance.md#converging-in-fewer-steps).
+// kMaxPlainSteps) plain steps more than a restart's one before momentum comes back. Where the plain
+// iteration does not creep but cycles or wanders (a mesh that is already the style's shape, under the
+// cubic method; Tetrahedron at lambda 10 on meshes with slivers), momentum restarted at every other
+// step turned the run into a cycle of its own, a plain and an extrapolated step, that moved the mesh
+// by up to 1% of its size per step where the plain iteration settles or moves far less
+// (docs/performance.md#converging-in-fewer-steps).
 // A step that carries a state of its own from step to step (the cubic method's per-vertex ADMM
 // state) is a map on the vertices and that state together: both are extrapolated, each vertex's
 // state with the vertex, because momentum on the vertices alone stopped the cubic method short of the
